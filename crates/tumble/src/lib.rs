@@ -1,0 +1,16 @@
+//! # Tumble
+//!
+//! A 3D rigid-body dynamics engine: mass properties, Newton–Euler motion with exact free rotation,
+//! and (in later modules) collisions, contacts and joints solved together.
+//!
+//! Conventions: f64, SI units, right-handed with **Z up**, quaternions as (x, y, z, w).
+
+pub mod id;
+pub mod mass;
+pub mod math;
+pub mod shape;
+
+pub use id::BodyId;
+pub use mass::{MassError, MassProperties, PrincipalFrame};
+pub use math::{DMat3, DQuat, DVec3, Transform};
+pub use shape::{Capsule, Compound, CompoundChild, Cone, Cuboid, Cylinder, Shape, Sphere, TriMesh};
