@@ -5,12 +5,18 @@
 //!
 //! Conventions: f64, SI units, right-handed with **Z up**, quaternions as (x, y, z, w).
 
+pub mod body;
 pub mod id;
+pub mod integrate;
 pub mod mass;
 pub mod math;
 pub mod shape;
+mod step;
+pub mod world;
 
+pub use body::{Body, BodyDef, BodyKind, BodyState};
 pub use id::BodyId;
 pub use mass::{MassError, MassProperties, PrincipalFrame};
 pub use math::{DMat3, DQuat, DVec3, Transform};
 pub use shape::{Capsule, Compound, CompoundChild, Cone, Cuboid, Cylinder, Shape, Sphere, TriMesh};
+pub use world::{World, WorldDef, WorldError};

@@ -8,11 +8,7 @@ pub use glam::{DMat3, DQuat, DVec3};
 /// The cross-product ("hat") matrix of `v`: `hat(v) * u == v.cross(u)` for every `u`.
 #[inline]
 pub fn hat(v: DVec3) -> DMat3 {
-    DMat3::from_cols(
-        DVec3::new(0.0, v.z, -v.y),
-        DVec3::new(-v.z, 0.0, v.x),
-        DVec3::new(v.y, -v.x, 0.0),
-    )
+    DMat3::from_cols(DVec3::new(0.0, v.z, -v.y), DVec3::new(-v.z, 0.0, v.x), DVec3::new(v.y, -v.x, 0.0))
 }
 
 /// A rigid transform: first rotate, then translate. Maps a frame's local coordinates to its parent's.

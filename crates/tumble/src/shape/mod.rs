@@ -69,4 +69,3 @@ pub(crate) fn check_positive(what: &'static str, value: f64) -> Result<f64, Mass
         Err(MassError::NotPositive { what, value })
     }
 }
-

@@ -1,0 +1,362 @@
+//! The world: owns every body and the settings, and is the public API for changing them.
+//! `step.rs` holds `World::step`.
+
+use crate::body::{Body, BodyDef, BodyKind};
+use crate::id::{BodyId, SlotPool};
+use crate::mass::{MassError, MassProperties};
+use crate::math::{is_finite_vec, DMat3, DVec3};
+
+/// Settings a world starts with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorldDef {
+    /// Gravity, m/s². Default (0, 0, −9.81): Z is up.
+    pub gravity: DVec3,
+}
+
+impl Default for WorldDef {
+    fn default() -> Self {
+        Self { gravity: DVec3::new(0.0, 0.0, -9.81) }
+    }
+}
+
+/// Errors from the world's API. Each says what was wrong and with which body.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum WorldError {
+    #[error("{0} does not name a body in this world (removed, or from another world)")]
+    StaleBody(BodyId),
+    #[error("body \"{body}\": {source}")]
+    Mass {
+        body: String,
+        #[source]
+        source: MassError,
+    },
+    #[error("body \"{body}\": {message}")]
+    InvalidBody { body: String, message: String },
+    #[error("{what} must be finite, got {value}")]
+    NotFinite { what: &'static str, value: String },
+    #[error("time step must be finite and > 0, got {0}")]
+    InvalidTimeStep(f64),
+}
+
+/// A rigid-body world.
+pub struct World {
+    pub(crate) bodies: SlotPool<Body>,
+    pub(crate) gravity: DVec3,
+    pub(crate) time: f64,
+    pub(crate) step_count: u64,
+}
+
+impl Default for World {
+    fn default() -> Self {
+        Self::new(WorldDef::default()).expect("the default world settings are valid")
+    }
+}
+
+fn check_vec(what: &'static str, v: DVec3) -> Result<DVec3, WorldError> {
+    if is_finite_vec(v) {
+        Ok(v)
+    } else {
+        Err(WorldError::NotFinite { what, value: format!("{v}") })
+    }
+}
+
+impl World {
+    pub fn new(def: WorldDef) -> Result<Self, WorldError> {
+        Ok(Self {
+            bodies: SlotPool::new(),
+            gravity: check_vec("gravity", def.gravity)?,
+            time: 0.0,
+            step_count: 0,
+        })
+    }
+
+    pub fn gravity(&self) -> DVec3 {
+        self.gravity
+    }
+
+    pub fn set_gravity(&mut self, gravity: DVec3) -> Result<(), WorldError> {
+        self.gravity = check_vec("gravity", gravity)?;
+        Ok(())
+    }
+
+    /// Simulated time, s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps taken so far.
+    pub fn step_count(&self) -> u64 {
+        self.step_count
+    }
+
+    /// Adds a body. The definition is checked in full first; on error nothing changes.
+    pub fn add_body(&mut self, def: BodyDef) -> Result<BodyId, WorldError> {
+        let invalid = |message: String| WorldError::InvalidBody { body: def.name.clone(), message };
+        let finite = |what: &str, v: DVec3| {
+            if is_finite_vec(v) {
+                Ok(())
+            } else {
+                Err(invalid(format!("{what} must be finite, got {v}")))
+            }
+        };
+        finite("position", def.position)?;
+        finite("linear_velocity", def.linear_velocity)?;
+        finite("angular_velocity", def.angular_velocity)?;
+        let q = def.orientation;
+        let q_len = q.length();
+        if !q_len.is_finite() || (q_len - 1.0).abs() > 1e-6 {
+            return Err(invalid(format!(
+                "orientation must be a unit quaternion (x, y, z, w), got ({}, {}, {}, {}) of length {q_len}",
+                q.x, q.y, q.z, q.w
+            )));
+        }
+        for (what, value) in
+            [("linear_damping", def.linear_damping), ("angular_damping", def.angular_damping)]
+        {
+            if !value.is_finite() || value < 0.0 {
+                return Err(invalid(format!("{what} must be finite and >= 0, got {value}")));
+            }
+        }
+        if !def.gravity_scale.is_finite() {
+            return Err(invalid(format!("gravity_scale must be finite, got {}", def.gravity_scale)));
+        }
+        let mass_properties = Self::resolve_mass(&def)?;
+        let principal = mass_properties.principal();
+        if def.kind == BodyKind::Dynamic && !(principal.moments.min_element() > 0.0) {
+            return Err(invalid(format!(
+                "a dynamic body needs positive principal moments of inertia, got {}",
+                principal.moments
+            )));
+        }
+        let body = Body::new(&def, mass_properties, principal);
+        Ok(self.bodies.insert(body).into())
+    }
+
+    /// The mass properties a definition asks for, in the body frame.
+    fn resolve_mass(def: &BodyDef) -> Result<MassProperties, WorldError> {
+        let mass_error = |source| WorldError::Mass { body: def.name.clone(), source };
+        if let Some(mp) = def.mass_properties {
+            let ok = mp.mass.is_finite()
+                && mp.mass > 0.0
+                && is_finite_vec(mp.center_of_mass)
+                && mp.inertia.is_finite()
+                && (mp.inertia - mp.inertia.transpose()).abs().to_cols_array().iter().all(|&e| {
+                    e <= 1e-9 * mp.inertia.abs().to_cols_array().iter().cloned().fold(0.0, f64::max)
+                });
+            if !ok {
+                return Err(WorldError::InvalidBody {
+                    body: def.name.clone(),
+                    message: "mass_properties must have finite mass > 0, a finite centre of mass and a finite symmetric inertia".into(),
+                });
+            }
+            return Ok(mp);
+        }
+        match &def.shape {
+            Some(shape) => {
+                if !def.density.is_finite() || def.density <= 0.0 {
+                    return Err(mass_error(MassError::NotPositive { what: "density", value: def.density }));
+                }
+                let mp = shape.mass_properties(def.density).map_err(mass_error)?;
+                match def.mass {
+                    Some(m) => mp.with_mass(m).map_err(mass_error),
+                    None => Ok(mp),
+                }
+            }
+            None if def.kind == BodyKind::Dynamic => Err(WorldError::InvalidBody {
+                body: def.name.clone(),
+                message: "a dynamic body needs a shape or mass_properties".into(),
+            }),
+            // A shapeless static or kinematic body: unit placeholder mass, never used as a mass.
+            None => Ok(MassProperties {
+                volume: 0.0,
+                mass: 1.0,
+                center_of_mass: DVec3::ZERO,
+                inertia: DMat3::IDENTITY,
+            }),
+        }
+    }
+
+    /// Removes a body; its id (and any copy of it) becomes stale.
+    pub fn remove_body(&mut self, id: BodyId) -> Result<Body, WorldError> {
+        self.bodies.remove(id.into()).ok_or(WorldError::StaleBody(id))
+    }
+
+    /// Number of bodies.
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    pub fn body(&self, id: BodyId) -> Result<&Body, WorldError> {
+        self.bodies.get(id.into()).ok_or(WorldError::StaleBody(id))
+    }
+
+    pub(crate) fn body_mut(&mut self, id: BodyId) -> Result<&mut Body, WorldError> {
+        self.bodies.get_mut(id.into()).ok_or(WorldError::StaleBody(id))
+    }
+
+    /// All bodies with their ids, in a fixed (slot) order.
+    pub fn bodies(&self) -> impl Iterator<Item = (BodyId, &Body)> {
+        self.bodies.iter().map(|(id, b)| (id.into(), b))
+    }
+
+    /// The first body with this name.
+    pub fn find_body(&self, name: &str) -> Option<BodyId> {
+        self.bodies().find(|(_, b)| b.name == name).map(|(id, _)| id)
+    }
+
+    // ---- changing state -------------------------------------------------------------------
+
+    /// Places the body frame's origin at `position` with `orientation` (normalised).
+    pub fn set_pose(
+        &mut self,
+        id: BodyId,
+        position: DVec3,
+        orientation: crate::math::DQuat,
+    ) -> Result<(), WorldError> {
+        check_vec("position", position)?;
+        let len = orientation.length();
+        if !len.is_finite() || len < 1e-9 {
+            return Err(WorldError::NotFinite { what: "orientation", value: format!("{orientation}") });
+        }
+        let body = self.body_mut(id)?;
+        let rotation = orientation.normalize();
+        body.state.rotation = rotation;
+        body.state.com_world = position + rotation * body.com_local;
+        Ok(())
+    }
+
+    /// Sets the velocity of the centre of mass. Ignored for static bodies (they never move).
+    pub fn set_linear_velocity(&mut self, id: BodyId, v: DVec3) -> Result<(), WorldError> {
+        check_vec("linear velocity", v)?;
+        let body = self.body_mut(id)?;
+        if body.kind != BodyKind::Static {
+            body.state.linear_velocity = v;
+        }
+        Ok(())
+    }
+
+    /// Sets the angular velocity (world frame). Ignored for static bodies.
+    pub fn set_angular_velocity(&mut self, id: BodyId, w: DVec3) -> Result<(), WorldError> {
+        check_vec("angular velocity", w)?;
+        let body = self.body_mut(id)?;
+        if body.kind != BodyKind::Static {
+            body.state.angular_velocity = w;
+        }
+        Ok(())
+    }
+
+    /// Adds force `f` acting at the world point `point_world`: the body gets `f` and the torque
+    /// `(p − x) × f` about its centre of mass. Cleared after the next step.
+    pub fn apply_force_at_point(
+        &mut self,
+        id: BodyId,
+        force: DVec3,
+        point_world: DVec3,
+    ) -> Result<(), WorldError> {
+        check_vec("force", force)?;
+        check_vec("point", point_world)?;
+        let body = self.body_mut(id)?;
+        body.force_world += force;
+        body.torque_world += (point_world - body.state.com_world).cross(force);
+        Ok(())
+    }
+
+    /// Adds force `f` at the centre of mass (no torque).
+    pub fn apply_force(&mut self, id: BodyId, force: DVec3) -> Result<(), WorldError> {
+        check_vec("force", force)?;
+        self.body_mut(id)?.force_world += force;
+        Ok(())
+    }
+
+    /// Adds a torque about the centre of mass (world frame).
+    pub fn apply_torque(&mut self, id: BodyId, torque: DVec3) -> Result<(), WorldError> {
+        check_vec("torque", torque)?;
+        self.body_mut(id)?.torque_world += torque;
+        Ok(())
+    }
+
+    /// Applies impulse `j` at `point_world` now: `Δv = j/m`, `ΔL = (p − x) × j`. No effect on
+    /// static or kinematic bodies.
+    pub fn apply_impulse_at_point(
+        &mut self,
+        id: BodyId,
+        impulse: DVec3,
+        point_world: DVec3,
+    ) -> Result<(), WorldError> {
+        check_vec("impulse", impulse)?;
+        check_vec("point", point_world)?;
+        let body = self.body_mut(id)?;
+        if body.kind != BodyKind::Dynamic {
+            return Ok(());
+        }
+        let r = point_world - body.state.com_world;
+        body.state.linear_velocity += impulse * body.inverse_mass;
+        body.state.angular_velocity += body.inverse_inertia_world() * r.cross(impulse);
+        Ok(())
+    }
+
+    /// Applies an angular impulse (world frame) now: `ΔL = j`.
+    pub fn apply_angular_impulse(&mut self, id: BodyId, angular_impulse: DVec3) -> Result<(), WorldError> {
+        check_vec("angular impulse", angular_impulse)?;
+        let body = self.body_mut(id)?;
+        if body.kind == BodyKind::Dynamic {
+            body.state.angular_velocity += body.inverse_inertia_world() * angular_impulse;
+        }
+        Ok(())
+    }
+
+    // ---- reading derived quantities ------------------------------------------------------------
+
+    /// Velocity of the body's material point now at `point_world`.
+    pub fn point_velocity(&self, id: BodyId, point_world: DVec3) -> Result<DVec3, WorldError> {
+        Ok(self.body(id)?.point_velocity(point_world))
+    }
+
+    /// Acceleration of the body's material point now at `point_world`, from gravity and the
+    /// forces and torques accumulated so far.
+    pub fn point_acceleration(&self, id: BodyId, point_world: DVec3) -> Result<DVec3, WorldError> {
+        Ok(self.body(id)?.point_acceleration(point_world, self.gravity))
+    }
+
+    /// The point inverse mass matrix `K(r₁, r₂)`; offsets from the centre of mass, world frame.
+    pub fn inverse_mass_matrix(&self, id: BodyId, r1: DVec3, r2: DVec3) -> Result<DMat3, WorldError> {
+        Ok(self.body(id)?.inverse_mass_matrix(r1, r2))
+    }
+
+    /// Total kinetic energy of the dynamic bodies.
+    pub fn kinetic_energy(&self) -> f64 {
+        self.bodies.iter().map(|(_, b)| b.kinetic_energy()).sum()
+    }
+
+    /// Total gravitational potential energy of the dynamic bodies, `−m g·x`, zero at the origin.
+    pub fn potential_energy(&self) -> f64 {
+        self.bodies
+            .iter()
+            .filter(|(_, b)| b.kind == BodyKind::Dynamic)
+            .map(|(_, b)| -b.mass() * b.gravity_scale * self.gravity.dot(b.state.com_world))
+            .sum()
+    }
+
+    /// Total linear momentum of the dynamic bodies.
+    pub fn linear_momentum(&self) -> DVec3 {
+        self.bodies.iter().map(|(_, b)| b.linear_momentum()).sum()
+    }
+
+    /// Total angular momentum of the dynamic bodies about the fixed world point `origin_world`.
+    pub fn angular_momentum(&self, origin_world: DVec3) -> DVec3 {
+        self.bodies.iter().map(|(_, b)| b.angular_momentum_about(origin_world)).sum()
+    }
+
+    /// Total angular momentum about the system's centre of mass (the dynamic bodies').
+    pub fn angular_momentum_about_com(&self) -> DVec3 {
+        let (m, mx) = self
+            .bodies
+            .iter()
+            .filter(|(_, b)| b.kind == BodyKind::Dynamic)
+            .fold((0.0, DVec3::ZERO), |(m, mx), (_, b)| (m + b.mass(), mx + b.mass() * b.state.com_world));
+        if m == 0.0 {
+            return DVec3::ZERO;
+        }
+        self.angular_momentum(mx / m)
+    }
+}
