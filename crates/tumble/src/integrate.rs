@@ -13,7 +13,8 @@
 //! explicit update (ω = I⁻¹L, rotate by |ω| h about ω, I⁻¹ from the old orientation) is first order
 //! and lets energy drift; `docs/free-rotation.md` derives both and compares them.
 //!
-//! Torque enters as a kick on the world momentum before the free flow: `L += τ h`.
+//! Torque enters as two half kicks on the world momentum around the free flow: `L += τ h/2`, flow,
+//! `L += τ h/2`.
 
 use crate::body::{Body, BodyKind};
 use crate::math::{DQuat, DVec3};
@@ -60,6 +61,15 @@ pub fn free_rotation_step(rotation: DQuat, l_world: DVec3, inertia_principal: DV
     q.normalize()
 }
 
+/// The lecture's explicit update (`RigidBody::Update`), kept as a reference to compare against:
+/// `ω = I⁻¹ L` with the world inertia of the *current* orientation, then one rotation by `|ω| h`
+/// about `ω`. It is first order and not symplectic: energy drifts and the intermediate-axis flip
+/// period comes out wrong. The engine does not use it.
+pub fn explicit_rotation_step(rotation: DQuat, l_world: DVec3, inertia_principal: DVec3, h: f64) -> DQuat {
+    let w_world = rotation * ((rotation.inverse() * l_world) / inertia_principal);
+    rotate_by_angular_velocity(rotation, w_world, h)
+}
+
 /// Rotates `rotation` by a constant world angular velocity for time `h` (exact: one rotation by
 /// |ω|h about ω). Used for kinematic bodies, whose ω is prescribed.
 pub fn rotate_by_angular_velocity(rotation: DQuat, angular_velocity: DVec3, h: f64) -> DQuat {
@@ -96,9 +106,13 @@ fn integrate_dynamic(body: &mut Body, gravity: DVec3, h: f64) {
     let q_principal = body.state.rotation * body.principal_rotation_local;
     let inertia = body.inertia_principal;
     let w_principal = q_principal.inverse() * body.state.angular_velocity;
-    let mut l_world = q_principal * (inertia * w_principal) + h * body.torque_world;
+    // The torque kick is split in two halves around the free flow (kick–flow–kick), which keeps
+    // the update second order for a constant torque; the total change is still exactly τ h.
+    let half_kick = 0.5 * h * body.torque_world;
+    let mut l_world = q_principal * (inertia * w_principal) + half_kick;
     l_world /= 1.0 + h * body.angular_damping;
     let q_principal = free_rotation_step(q_principal, l_world, inertia, h);
+    l_world += half_kick;
     body.state.rotation = (q_principal * body.principal_rotation_local.inverse()).normalize();
     body.state.angular_velocity = q_principal * ((q_principal.inverse() * l_world) / inertia);
 }
