@@ -113,11 +113,8 @@ fn check_degenerate(vertices: &[DVec3], triangles: &[[u32; 3]], diagonal2: f64) 
 /// traverse it in opposite directions, i.e. no directed edge appears twice.
 fn check_closed_and_wound(triangles: &[[u32; 3]]) -> Result<(), MassError> {
     // (from, to, triangle) for every directed edge.
-    let mut directed: Vec<(u32, u32, usize)> = triangles
-        .iter()
-        .enumerate()
-        .flat_map(|(t, &[a, b, c])| [(a, b, t), (b, c, t), (c, a, t)])
-        .collect();
+    let mut directed: Vec<(u32, u32, usize)> =
+        triangles.iter().enumerate().flat_map(|(t, &[a, b, c])| [(a, b, t), (b, c, t), (c, a, t)]).collect();
 
     let mut undirected: Vec<(u32, u32)> = directed.iter().map(|&(a, b, _)| (a.min(b), a.max(b))).collect();
     undirected.sort_unstable();
@@ -185,10 +182,7 @@ mod tests {
         let (v, t) = tetra(DVec3::new(0.0, 0.0, -1.0));
         assert!(matches!(validate_closed_mesh(&v, &t), Err(MassError::InvertedMesh { .. })));
         let (v, t) = tetra(DVec3::Z);
-        assert_eq!(
-            validate_closed_mesh(&v, &t[..3]),
-            Err(MassError::OpenMesh { a: 1, b: 2, count: 1 })
-        );
+        assert_eq!(validate_closed_mesh(&v, &t[..3]), Err(MassError::OpenMesh { a: 1, b: 2, count: 1 }));
         let mut flipped = t.clone();
         flipped[3] = [1, 3, 2];
         assert!(matches!(validate_closed_mesh(&v, &flipped), Err(MassError::InconsistentWinding { .. })));

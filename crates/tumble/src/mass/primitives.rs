@@ -31,12 +31,7 @@ pub(super) fn point_mass_inertia(mass: f64, d: DVec3) -> DMat3 {
 
 /// The solid's properties with the inertia diagonal in its own axes.
 fn diagonal(volume: f64, density: f64, center_of_mass: DVec3, moments: DVec3) -> MassProperties {
-    MassProperties {
-        volume,
-        mass: density * volume,
-        center_of_mass,
-        inertia: DMat3::from_diagonal(moments),
-    }
+    MassProperties { volume, mass: density * volume, center_of_mass, inertia: DMat3::from_diagonal(moments) }
 }
 
 impl MassProperties {
@@ -80,8 +75,7 @@ impl MassProperties {
         let v_cap = 2.0 / 3.0 * PI * r * r * r;
         let (m_cyl, m_cap) = (rho * v_cyl, rho * v_cap);
         let i_zz = 0.5 * m_cyl * r * r + 2.0 * (0.4 * m_cap * r * r);
-        let i_xx = m_cyl * (0.25 * r * r + h * h / 3.0)
-            + 2.0 * m_cap * (0.4 * r * r + h * h + 0.75 * h * r);
+        let i_xx = m_cyl * (0.25 * r * r + h * h / 3.0) + 2.0 * m_cap * (0.4 * r * r + h * h + 0.75 * h * r);
         Ok(MassProperties {
             volume: v_cyl + 2.0 * v_cap,
             mass: m_cyl + 2.0 * m_cap,

@@ -104,17 +104,14 @@ impl VolumeIntegrals {
     pub fn center_and_inertia(&self) -> (DVec3, DMat3) {
         let v = self.volume;
         let c = self.first / v; // relative to `origin`
-        // Second moments about the centre: ∫ r rᵀ dV − V c cᵀ.
+                                // Second moments about the centre: ∫ r rᵀ dV − V c cᵀ.
         let sq = self.squares - v * c * c;
         let pr = self.products - v * DVec3::new(c.x * c.y, c.y * c.z, c.z * c.x);
         // I = (tr S) 1 − S, with S the second-moment matrix.
         let (ixx, iyy, izz) = (sq.y + sq.z, sq.z + sq.x, sq.x + sq.y);
         let (ixy, iyz, izx) = (-pr.x, -pr.y, -pr.z);
-        let inertia = DMat3::from_cols(
-            DVec3::new(ixx, ixy, izx),
-            DVec3::new(ixy, iyy, iyz),
-            DVec3::new(izx, iyz, izz),
-        );
+        let inertia =
+            DMat3::from_cols(DVec3::new(ixx, ixy, izx), DVec3::new(ixy, iyy, iyz), DVec3::new(izx, iyz, izz));
         (self.origin + c, inertia)
     }
 }
