@@ -53,7 +53,11 @@ pub fn symmetric_eigen(m: DMat3) -> (DVec3, DMat3) {
     // Sort eigenpairs ascending (stable, so equal eigenvalues keep their order).
     let mut order = [0usize, 1, 2];
     order.sort_by(|&i, &j| a[i][i].total_cmp(&a[j][j]));
-    let values = DVec3::new(a[order[0]][order[0]], a[order[1]][order[1]], a[order[2]][order[2]]);
+    let values = DVec3::new(
+        a[order[0]][order[0]],
+        a[order[1]][order[1]],
+        a[order[2]][order[2]],
+    );
     let column = |c: usize| DVec3::new(v[0][c], v[1][c], v[2][c]);
 
     // Re-orthonormalise and make right-handed. The third column is an eigenvector either way:
@@ -111,13 +115,19 @@ mod tests {
 
     fn check(m: DMat3, tol: f64) -> (DVec3, DMat3) {
         let (vals, axes) = symmetric_eigen(m);
-        assert!(vals.x <= vals.y && vals.y <= vals.z, "not ascending: {vals}");
+        assert!(
+            vals.x <= vals.y && vals.y <= vals.z,
+            "not ascending: {vals}"
+        );
         let ortho = mat3_max_abs(axes.transpose() * axes - DMat3::IDENTITY);
         assert!(ortho < 1e-15, "not orthonormal: {ortho:e}");
         assert!((axes.determinant() - 1.0).abs() < 1e-15);
         let back = axes * DMat3::from_diagonal(vals) * axes.transpose();
         let err = mat3_max_abs(back - m);
-        assert!(err <= tol * mat3_max_abs(m).max(f64::MIN_POSITIVE), "reconstruction {err:e}");
+        assert!(
+            err <= tol * mat3_max_abs(m).max(f64::MIN_POSITIVE),
+            "reconstruction {err:e}"
+        );
         (vals, axes)
     }
 

@@ -20,17 +20,33 @@ pub enum MassError {
     #[error("{what} must be finite and > 0, got {value}")]
     NotPositive { what: &'static str, value: f64 },
     #[error("mesh vertex {index} is not finite: ({x}, {y}, {z})")]
-    NonFiniteVertex { index: usize, x: f64, y: f64, z: f64 },
+    NonFiniteVertex {
+        index: usize,
+        x: f64,
+        y: f64,
+        z: f64,
+    },
     #[error("mesh has no triangles")]
     EmptyMesh,
-    #[error("mesh triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices")]
-    IndexOutOfRange { triangle: usize, vertex: u32, count: usize },
+    #[error(
+        "mesh triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices"
+    )]
+    IndexOutOfRange {
+        triangle: usize,
+        vertex: u32,
+        count: usize,
+    },
     #[error("mesh triangle {triangle} is degenerate (repeated vertex or zero area)")]
     DegenerateTriangle { triangle: usize },
     #[error("mesh is open: edge ({a}, {b}) belongs to {count} triangle(s), a closed mesh needs exactly 2")]
     OpenMesh { a: u32, b: u32, count: usize },
     #[error("mesh winding is inconsistent: edge ({a}, {b}) is used in the same direction by triangles {t1} and {t2}")]
-    InconsistentWinding { a: u32, b: u32, t1: usize, t2: usize },
+    InconsistentWinding {
+        a: u32,
+        b: u32,
+        t1: usize,
+        t2: usize,
+    },
     #[error("mesh is inside out (signed volume {volume} < 0): its triangles wind clockwise seen from outside; reverse each triangle's vertex order")]
     InvertedMesh { volume: f64 },
     #[error("mesh encloses no volume (signed volume {volume})")]

@@ -48,7 +48,12 @@ impl MassProperties {
         let rho = positive("density", density)?;
         let volume = 4.0 / 3.0 * PI * r * r * r;
         let m = rho * volume;
-        Ok(diagonal(volume, rho, DVec3::ZERO, DVec3::splat(0.4 * m * r * r)))
+        Ok(diagonal(
+            volume,
+            rho,
+            DVec3::ZERO,
+            DVec3::splat(0.4 * m * r * r),
+        ))
     }
 
     /// Solid box with `half_extents` at uniform `density`.
@@ -101,7 +106,12 @@ impl MassProperties {
         let volume = PI * r * r * height;
         let m = rho * volume;
         let i_xx = m * (0.25 * r * r + height * height / 12.0);
-        Ok(diagonal(volume, rho, DVec3::ZERO, DVec3::new(i_xx, i_xx, 0.5 * m * r * r)))
+        Ok(diagonal(
+            volume,
+            rho,
+            DVec3::ZERO,
+            DVec3::new(i_xx, i_xx, 0.5 * m * r * r),
+        ))
     }
 
     /// Solid cone along Z, base at −half_height, apex at +half_height.
@@ -117,14 +127,23 @@ impl MassProperties {
         let m = rho * volume;
         let i_xx = m * (0.15 * r * r + 3.0 / 80.0 * height * height);
         let com = DVec3::new(0.0, 0.0, -0.5 * h);
-        Ok(diagonal(volume, rho, com, DVec3::new(i_xx, i_xx, 0.3 * m * r * r)))
+        Ok(diagonal(
+            volume,
+            rho,
+            com,
+            DVec3::new(i_xx, i_xx, 0.3 * m * r * r),
+        ))
     }
 
     /// The same solid rescaled to total `mass` (the density is whatever gives that mass).
     pub fn with_mass(self, mass: f64) -> Result<Self, MassError> {
         let mass = positive("mass", mass)?;
         let scale = mass / self.mass;
-        Ok(MassProperties { mass, inertia: self.inertia * scale, ..self })
+        Ok(MassProperties {
+            mass,
+            inertia: self.inertia * scale,
+            ..self
+        })
     }
 
     /// The same solid placed at `pose`: the centre of mass is mapped by `pose` and the inertia
@@ -153,12 +172,20 @@ impl MassProperties {
         positive("compound mass", mass)?;
         // Offsets from the first part's centre keep the weighted mean accurate far from the origin.
         let origin = first.center_of_mass;
-        let moment: DVec3 = parts.iter().map(|p| p.mass * (p.center_of_mass - origin)).sum();
+        let moment: DVec3 = parts
+            .iter()
+            .map(|p| p.mass * (p.center_of_mass - origin))
+            .sum();
         let center_of_mass = origin + moment / mass;
         let inertia = parts.iter().fold(DMat3::ZERO, |acc, p| {
             acc + p.inertia + point_mass_inertia(p.mass, p.center_of_mass - center_of_mass)
         });
-        Ok(MassProperties { volume, mass, center_of_mass, inertia })
+        Ok(MassProperties {
+            volume,
+            mass,
+            center_of_mass,
+            inertia,
+        })
     }
 
     /// Principal moments (ascending) and axes (a rotation whose columns are the axes).
@@ -181,18 +208,53 @@ mod tests {
     #[test]
     fn rejects_bad_sizes_and_density() {
         let err = MassProperties::sphere(-1.0, 1.0).unwrap_err();
-        assert_eq!(err, MassError::NotPositive { what: "sphere radius", value: -1.0 });
-        assert!(err.to_string().contains("sphere radius must be finite and > 0"));
+        assert_eq!(
+            err,
+            MassError::NotPositive {
+                what: "sphere radius",
+                value: -1.0
+            }
+        );
+        assert!(err
+            .to_string()
+            .contains("sphere radius must be finite and > 0"));
         let err = MassProperties::cuboid(DVec3::new(1.0, f64::NAN, 1.0), 1.0).unwrap_err();
-        assert!(matches!(err, MassError::NotPositive { what: "box half extent y", .. }));
+        assert!(matches!(
+            err,
+            MassError::NotPositive {
+                what: "box half extent y",
+                ..
+            }
+        ));
         let err = MassProperties::cone(1.0, 1.0, 0.0).unwrap_err();
-        assert!(matches!(err, MassError::NotPositive { what: "density", .. }));
+        assert!(matches!(
+            err,
+            MassError::NotPositive {
+                what: "density",
+                ..
+            }
+        ));
         let err = MassProperties::capsule(1.0, f64::INFINITY, 1.0).unwrap_err();
-        assert!(matches!(err, MassError::NotPositive { what: "capsule half_height", .. }));
+        assert!(matches!(
+            err,
+            MassError::NotPositive {
+                what: "capsule half_height",
+                ..
+            }
+        ));
         let err = MassProperties::cylinder(0.0, 1.0, 1.0).unwrap_err();
-        assert!(matches!(err, MassError::NotPositive { what: "cylinder radius", .. }));
+        assert!(matches!(
+            err,
+            MassError::NotPositive {
+                what: "cylinder radius",
+                ..
+            }
+        ));
         let unit = MassProperties::sphere(1.0, 1.0).unwrap();
-        assert!(matches!(unit.with_mass(-2.0), Err(MassError::NotPositive { what: "mass", .. })));
+        assert!(matches!(
+            unit.with_mass(-2.0),
+            Err(MassError::NotPositive { what: "mass", .. })
+        ));
     }
 
     #[test]
