@@ -52,6 +52,48 @@ impl Sub {
     }
 }
 
+/// Triangles per block of the blocked summation.
+const SUM_BLOCK: usize = 256;
+
+/// Running sums over triangles, before the constant factors 1/6, 1/24, 1/60, 1/120.
+#[derive(Default)]
+struct Sums {
+    volume: f64,
+    abs_volume: f64,
+    first: DVec3,
+    squares: DVec3,
+    products: DVec3,
+}
+
+impl Sums {
+    /// Adds one triangle's face integrals (vertices already relative to the origin).
+    fn add_triangle(&mut self, [p0, p1, p2]: [DVec3; 3]) {
+        // Area-weighted normal: twice the area times the unit normal.
+        let n = (p1 - p0).cross(p2 - p0);
+        let sx = Sub::new(p0.x, p1.x, p2.x);
+        let sy = Sub::new(p0.y, p1.y, p2.y);
+        let sz = Sub::new(p0.z, p1.z, p2.z);
+        self.volume += n.x * sx.f1;
+        // 6 × the signed volume of the tetrahedron (origin, p0, p1, p2).
+        self.abs_volume += p0.dot(p1.cross(p2)).abs();
+        self.first += n * DVec3::new(sx.f2, sy.f2, sz.f2);
+        self.squares += n * DVec3::new(sx.f3, sy.f3, sz.f3);
+        self.products += n * DVec3::new(
+            p0.y * sx.g[0] + p1.y * sx.g[1] + p2.y * sx.g[2],
+            p0.z * sy.g[0] + p1.z * sy.g[1] + p2.z * sy.g[2],
+            p0.x * sz.g[0] + p1.x * sz.g[1] + p2.x * sz.g[2],
+        );
+    }
+
+    fn add(&mut self, o: &Sums) {
+        self.volume += o.volume;
+        self.abs_volume += o.abs_volume;
+        self.first += o.first;
+        self.squares += o.squares;
+        self.products += o.products;
+    }
+}
+
 impl VolumeIntegrals {
     /// Integrates over the solid bounded by `triangles`, with every vertex taken relative to
     /// `origin`. Indices must be in range (the caller validates).
@@ -61,41 +103,24 @@ impl VolumeIntegrals {
     /// the centre is their difference from `m c cᵀ`, so working relative to a nearby point avoids
     /// cancelling large numbers and losing digits.
     pub fn compute(vertices: &[DVec3], triangles: &[[u32; 3]], origin: DVec3) -> VolumeIntegrals {
-        // Accumulators, before the constant factors 1/6, 1/24, 1/60, 1/120.
-        let mut volume = 0.0;
-        let mut abs_volume = 0.0;
-        let mut first = DVec3::ZERO;
-        let mut squares = DVec3::ZERO;
-        let mut products = DVec3::ZERO;
-        for tri in triangles {
-            let p0 = vertices[tri[0] as usize] - origin;
-            let p1 = vertices[tri[1] as usize] - origin;
-            let p2 = vertices[tri[2] as usize] - origin;
-            // Area-weighted normal: twice the area times the unit normal.
-            let n = (p1 - p0).cross(p2 - p0);
-            let sx = Sub::new(p0.x, p1.x, p2.x);
-            let sy = Sub::new(p0.y, p1.y, p2.y);
-            let sz = Sub::new(p0.z, p1.z, p2.z);
-
-            let dv = n.x * sx.f1;
-            volume += dv;
-            // 6 × the signed volume of the tetrahedron (origin, p0, p1, p2).
-            abs_volume += p0.dot(p1.cross(p2)).abs();
-            first += n * DVec3::new(sx.f2, sy.f2, sz.f2);
-            squares += n * DVec3::new(sx.f3, sy.f3, sz.f3);
-            products += n * DVec3::new(
-                p0.y * sx.g[0] + p1.y * sx.g[1] + p2.y * sx.g[2],
-                p0.z * sy.g[0] + p1.z * sy.g[1] + p2.z * sy.g[2],
-                p0.x * sz.g[0] + p1.x * sz.g[1] + p2.x * sz.g[2],
-            );
+        // Blocked summation: each block of triangles is summed on its own, then the block sums
+        // are added. The round-off then grows like (block + n / block) ε instead of n ε, which
+        // keeps meshes of a million triangles far inside 1e-12 relative, at no cost in speed.
+        let mut total = Sums::default();
+        for block in triangles.chunks(SUM_BLOCK) {
+            let mut sums = Sums::default();
+            for tri in block {
+                sums.add_triangle(tri.map(|i| vertices[i as usize] - origin));
+            }
+            total.add(&sums);
         }
         VolumeIntegrals {
             origin,
-            volume: volume / 6.0,
-            first: first / 24.0,
-            squares: squares / 60.0,
-            products: products / 120.0,
-            abs_volume: abs_volume / 6.0,
+            volume: total.volume / 6.0,
+            first: total.first / 24.0,
+            squares: total.squares / 60.0,
+            products: total.products / 120.0,
+            abs_volume: total.abs_volume / 6.0,
         }
     }
 
