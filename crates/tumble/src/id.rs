@@ -61,11 +61,23 @@ typed_id!(
     BodyId
 );
 
+typed_id!(
+    /// Names a joint in a `World`.
+    JointId
+);
+
 /// An untyped id, used by the pool; the typed ids convert to and from it.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub struct RawId {
     index: u32,
     generation: u32,
+}
+
+impl RawId {
+    /// The slot index.
+    pub fn index(self) -> usize {
+        self.index as usize
+    }
 }
 
 struct Slot<T> {

@@ -1,0 +1,11 @@
+//! Dynamics: the soft-step constraint solver (Catto's Solver2D / Box2D v3 design, in 3D), the
+//! joints built from reusable constraint parts, and the solver's per-body working state.
+//!
+//! See `docs/solver.md` for the derivation of the soft constraints and the stage order.
+
+pub mod joint;
+pub(crate) mod softness;
+pub mod solver;
+pub(crate) mod solver_body;
+
+pub use softness::Softness;
