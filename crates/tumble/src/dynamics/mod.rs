@@ -3,9 +3,11 @@
 //!
 //! See `docs/solver.md` for the derivation of the soft constraints and the stage order.
 
+pub(crate) mod contact_solver;
 pub mod joint;
 pub(crate) mod softness;
 pub mod solver;
 pub(crate) mod solver_body;
 
+pub use contact_solver::{ContactImpulse, ContactMaterial};
 pub use softness::Softness;

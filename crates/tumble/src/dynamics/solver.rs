@@ -69,6 +69,8 @@ pub(crate) struct StepContext {
     pub gravity: DVec3,
     pub joint_softness: Softness,
     pub contact_softness: Softness,
+    /// Contacts against static (or kinematic) bodies: twice as stiff, since only one body moves.
+    pub static_softness: Softness,
     pub max_contact_push_velocity: f64,
     pub restitution_threshold: f64,
     pub warm_starting: bool,
@@ -95,6 +97,11 @@ impl StepContext {
             ),
             contact_softness: Softness::new(
                 settings.contact_hertz.min(max_hertz),
+                settings.contact_damping_ratio,
+                h,
+            ),
+            static_softness: Softness::new(
+                (2.0 * settings.contact_hertz).min(2.0 * max_hertz),
                 settings.contact_damping_ratio,
                 h,
             ),
