@@ -159,6 +159,11 @@ impl<T> SlotPool<T> {
         slot.value.as_mut()
     }
 
+    /// The live object in slot `index`, whatever its generation.
+    pub fn iter_slot(&self, index: usize) -> Option<&T> {
+        self.slots.get(index).and_then(|s| s.value.as_ref())
+    }
+
     /// Live objects with their ids, in slot order.
     pub fn iter(&self) -> impl Iterator<Item = (RawId, &T)> {
         self.slots.iter().enumerate().filter_map(|(i, s)| {

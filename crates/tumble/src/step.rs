@@ -14,8 +14,14 @@ impl World {
             return Err(WorldError::InvalidTimeStep(dt));
         }
 
+        // Wake sleeping islands that awake bodies are linked to.
+        self.wake_islands_touched_by_awake_bodies(&[]);
+
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
         self.solve(dt);
+
+        // Islands and sleep (dynamics/island.rs).
+        self.update_sleep(dt, &[]);
 
         // Forces and torques act for one step only.
         for (_, body) in self.bodies.iter_mut() {

@@ -2,6 +2,7 @@
 //! `step.rs` holds `World::step`.
 
 use crate::body::{Body, BodyDef, BodyKind};
+use crate::dynamics::island::SleepSettings;
 use crate::dynamics::joint::{Joint, JointDef};
 use crate::dynamics::solver::SolverSettings;
 use crate::dynamics::solver_body::SolverBody;
@@ -16,11 +17,17 @@ pub struct WorldDef {
     pub gravity: DVec3,
     /// Substeps, constraint stiffness and the other solver settings.
     pub solver: SolverSettings,
+    /// When resting bodies fall asleep.
+    pub sleep: SleepSettings,
 }
 
 impl Default for WorldDef {
     fn default() -> Self {
-        Self { gravity: DVec3::new(0.0, 0.0, -9.81), solver: SolverSettings::default() }
+        Self {
+            gravity: DVec3::new(0.0, 0.0, -9.81),
+            solver: SolverSettings::default(),
+            sleep: SleepSettings::default(),
+        }
     }
 }
 
@@ -54,6 +61,7 @@ pub struct World {
     pub(crate) bodies: SlotPool<Body>,
     pub(crate) joints: SlotPool<Joint>,
     pub(crate) solver_settings: SolverSettings,
+    pub(crate) sleep_settings: SleepSettings,
     /// The solver's per-body working copies, kept between steps to reuse the allocation.
     pub(crate) solver_bodies: Vec<SolverBody>,
     pub(crate) gravity: DVec3,
@@ -102,6 +110,7 @@ impl World {
             bodies: SlotPool::new(),
             joints: SlotPool::new(),
             solver_settings: def.solver,
+            sleep_settings: def.sleep,
             solver_bodies: Vec::new(),
             gravity: check_vec("gravity", def.gravity)?,
             time: 0.0,
@@ -235,7 +244,10 @@ impl World {
             .map(|(jid, _)| jid)
             .collect();
         for jid in attached {
-            self.joints.remove(jid);
+            if let Some(joint) = self.joints.remove(jid) {
+                let other = if joint.body_a == id { joint.body_b } else { joint.body_a };
+                let _ = self.wake_body(other);
+            }
         }
         Ok(body)
     }
@@ -271,12 +283,19 @@ impl World {
         }
         def.kind.validate().map_err(invalid)?;
         let joint = Joint::new(&def, a, b);
-        Ok(self.joints.insert(joint).into())
+        let id = self.joints.insert(joint).into();
+        self.wake_body(def.body_a)?;
+        self.wake_body(def.body_b)?;
+        Ok(id)
     }
 
     /// Removes a joint; its id becomes stale.
     pub fn remove_joint(&mut self, id: JointId) -> Result<Joint, WorldError> {
-        self.joints.remove(id.into()).ok_or(WorldError::StaleJoint(id))
+        let joint = self.joints.remove(id.into()).ok_or(WorldError::StaleJoint(id))?;
+        // The bodies it held may now move: wake them (a removed body's id is simply stale).
+        let _ = self.wake_body(joint.body_a);
+        let _ = self.wake_body(joint.body_b);
+        Ok(joint)
     }
 
     pub fn joint(&self, id: JointId) -> Result<&Joint, WorldError> {
@@ -329,6 +348,7 @@ impl World {
         if !len.is_finite() || len < 1e-9 {
             return Err(WorldError::NotFinite { what: "orientation", value: format!("{orientation}") });
         }
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         let rotation = orientation.normalize();
         body.state.rotation = rotation;
@@ -339,6 +359,7 @@ impl World {
     /// Sets the velocity of the centre of mass. Ignored for static bodies (they never move).
     pub fn set_linear_velocity(&mut self, id: BodyId, v: DVec3) -> Result<(), WorldError> {
         check_vec("linear velocity", v)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         if body.kind != BodyKind::Static {
             body.state.linear_velocity = v;
@@ -349,6 +370,7 @@ impl World {
     /// Sets the angular velocity (world frame). Ignored for static bodies.
     pub fn set_angular_velocity(&mut self, id: BodyId, w: DVec3) -> Result<(), WorldError> {
         check_vec("angular velocity", w)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         if body.kind != BodyKind::Static {
             body.state.angular_velocity = w;
@@ -366,6 +388,7 @@ impl World {
     ) -> Result<(), WorldError> {
         check_vec("force", force)?;
         check_vec("point", point_world)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         body.force_world += force;
         body.torque_world += (point_world - body.state.com_world).cross(force);
@@ -375,6 +398,7 @@ impl World {
     /// Adds force `f` at the centre of mass (no torque).
     pub fn apply_force(&mut self, id: BodyId, force: DVec3) -> Result<(), WorldError> {
         check_vec("force", force)?;
+        self.wake_body(id)?;
         self.body_mut(id)?.force_world += force;
         Ok(())
     }
@@ -382,6 +406,7 @@ impl World {
     /// Adds a torque about the centre of mass (world frame).
     pub fn apply_torque(&mut self, id: BodyId, torque: DVec3) -> Result<(), WorldError> {
         check_vec("torque", torque)?;
+        self.wake_body(id)?;
         self.body_mut(id)?.torque_world += torque;
         Ok(())
     }
@@ -396,6 +421,7 @@ impl World {
     ) -> Result<(), WorldError> {
         check_vec("impulse", impulse)?;
         check_vec("point", point_world)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         if body.kind != BodyKind::Dynamic {
             return Ok(());
@@ -409,6 +435,7 @@ impl World {
     /// Applies an angular impulse (world frame) now: `ΔL = j`.
     pub fn apply_angular_impulse(&mut self, id: BodyId, angular_impulse: DVec3) -> Result<(), WorldError> {
         check_vec("angular impulse", angular_impulse)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         if body.kind == BodyKind::Dynamic {
             body.state.angular_velocity += body.inverse_inertia_world() * angular_impulse;

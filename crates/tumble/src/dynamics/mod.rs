@@ -4,10 +4,12 @@
 //! See `docs/solver.md` for the derivation of the soft constraints and the stage order.
 
 pub(crate) mod contact_solver;
+pub(crate) mod island;
 pub mod joint;
 pub(crate) mod softness;
 pub mod solver;
 pub(crate) mod solver_body;
 
 pub use contact_solver::{ContactImpulse, ContactMaterial};
+pub use island::SleepSettings;
 pub use softness::Softness;

@@ -135,7 +135,10 @@ impl World {
         bodies.clear();
         bodies.resize(self.bodies.capacity_index(), SolverBody::FIXED);
         for (id, body) in self.bodies.iter() {
-            bodies[id.index()] = SolverBody::from_body(body);
+            // Sleeping bodies stand still: they take part as fixed bodies, if at all.
+            if body.is_awake() {
+                bodies[id.index()] = SolverBody::from_body(body);
+            }
         }
 
         // Prepare joints.
@@ -175,7 +178,9 @@ impl World {
             }
         }
         for (id, body) in self.bodies.iter_mut() {
-            bodies[id.index()].write_back(body);
+            if body.is_awake() {
+                bodies[id.index()].write_back(body);
+            }
         }
         self.solver_bodies = bodies;
     }
