@@ -8,6 +8,7 @@
 //!   `principal_rotation_local` maps it into the body frame;
 //! - `linear_velocity` is the velocity of the centre of mass, `angular_velocity` is in the world frame.
 
+use crate::dynamics::material::Material;
 use crate::mass::{MassProperties, PrincipalFrame};
 use crate::math::{hat, DMat3, DQuat, DVec3, Transform};
 use crate::shape::Shape;
@@ -64,6 +65,8 @@ pub struct BodyDef {
     pub gravity_scale: f64,
     /// May this body fall asleep when it comes to rest? Default true.
     pub allow_sleep: bool,
+    /// The surface of the body's shape: friction, restitution, rolling and torsional friction.
+    pub material: Material,
 }
 
 impl Default for BodyDef {
@@ -83,6 +86,7 @@ impl Default for BodyDef {
             angular_damping: 0.0,
             gravity_scale: 1.0,
             allow_sleep: true,
+            material: Material::default(),
         }
     }
 }
@@ -124,6 +128,7 @@ pub struct Body {
     pub(crate) angular_damping: f64,
     pub(crate) gravity_scale: f64,
     pub(crate) allow_sleep: bool,
+    pub(crate) material: Material,
     /// How long the body has been slower than the sleep thresholds, s.
     pub(crate) sleep_time: f64,
     /// `Some(island)` while asleep: the island (named by its lowest body slot) it sleeps with.
@@ -160,6 +165,7 @@ impl Body {
             angular_damping: def.angular_damping,
             gravity_scale: def.gravity_scale,
             allow_sleep: def.allow_sleep,
+            material: def.material,
             sleep_time: 0.0,
             sleeping_island: None,
         }
@@ -273,6 +279,11 @@ impl Body {
 
     pub fn gravity_scale(&self) -> f64 {
         self.gravity_scale
+    }
+
+    /// The surface material of the body's shape.
+    pub fn material(&self) -> &Material {
+        &self.material
     }
 
     /// False while the body sleeps (it is then not simulated until something wakes it).

@@ -18,6 +18,7 @@ pub mod world;
 pub use body::{Body, BodyDef, BodyKind, BodyState};
 pub use dynamics::joint::{BallJoint, Joint, JointDef, JointKind};
 pub use dynamics::solver::SolverSettings;
+pub use dynamics::{Material, SleepSettings};
 pub use id::{BodyId, JointId};
 pub use mass::{MassError, MassProperties, PrincipalFrame};
 pub use math::{DMat3, DQuat, DVec3, Transform};

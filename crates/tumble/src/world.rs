@@ -175,6 +175,7 @@ impl World {
                 return Err(invalid(format!("{what} must be finite and >= 0, got {value}")));
             }
         }
+        def.material.validate().map_err(|m| invalid(format!("material: {m}")))?;
         if !def.gravity_scale.is_finite() {
             return Err(invalid(format!("gravity_scale must be finite, got {}", def.gravity_scale)));
         }

@@ -6,10 +6,12 @@
 pub(crate) mod contact_solver;
 pub(crate) mod island;
 pub mod joint;
+pub mod material;
 pub(crate) mod softness;
 pub mod solver;
 pub(crate) mod solver_body;
 
 pub use contact_solver::{ContactImpulse, ContactMaterial};
 pub use island::SleepSettings;
+pub use material::Material;
 pub use softness::Softness;
