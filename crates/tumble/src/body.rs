@@ -8,6 +8,8 @@
 //!   `principal_rotation_local` maps it into the body frame;
 //! - `linear_velocity` is the velocity of the centre of mass, `angular_velocity` is in the world frame.
 
+use crate::collision::filter::CollisionFilter;
+use crate::collision::ProxyKey;
 use crate::dynamics::material::Material;
 use crate::mass::{MassProperties, PrincipalFrame};
 use crate::math::{hat, DMat3, DQuat, DVec3, Transform};
@@ -67,6 +69,10 @@ pub struct BodyDef {
     pub allow_sleep: bool,
     /// The surface of the body's shape: friction, restitution, rolling and torsional friction.
     pub material: Material,
+    /// Which other shapes the body's shape may touch.
+    pub filter: CollisionFilter,
+    /// A sensor reports overlaps but makes no contact force.
+    pub is_sensor: bool,
 }
 
 impl Default for BodyDef {
@@ -87,6 +93,8 @@ impl Default for BodyDef {
             gravity_scale: 1.0,
             allow_sleep: true,
             material: Material::default(),
+            filter: CollisionFilter::default(),
+            is_sensor: false,
         }
     }
 }
@@ -129,6 +137,10 @@ pub struct Body {
     pub(crate) gravity_scale: f64,
     pub(crate) allow_sleep: bool,
     pub(crate) material: Material,
+    pub(crate) filter: CollisionFilter,
+    pub(crate) is_sensor: bool,
+    /// Broad-phase proxies of the body's leaf shapes (one per compound child).
+    pub(crate) proxies: Vec<ProxyKey>,
     /// How long the body has been slower than the sleep thresholds, s.
     pub(crate) sleep_time: f64,
     /// `Some(island)` while asleep: the island (named by its lowest body slot) it sleeps with.
@@ -166,6 +178,9 @@ impl Body {
             gravity_scale: def.gravity_scale,
             allow_sleep: def.allow_sleep,
             material: def.material,
+            filter: def.filter,
+            is_sensor: def.is_sensor,
+            proxies: Vec::new(),
             sleep_time: 0.0,
             sleeping_island: None,
         }
@@ -284,6 +299,14 @@ impl Body {
     /// The surface material of the body's shape.
     pub fn material(&self) -> &Material {
         &self.material
+    }
+
+    pub fn filter(&self) -> &CollisionFilter {
+        &self.filter
+    }
+
+    pub fn is_sensor(&self) -> bool {
+        self.is_sensor
     }
 
     /// False while the body sleeps (it is then not simulated until something wakes it).

@@ -159,6 +159,12 @@ impl<T> SlotPool<T> {
         slot.value.as_mut()
     }
 
+    /// The id of the live object in slot `index`.
+    pub fn id_of_slot(&self, index: usize) -> Option<RawId> {
+        let slot = self.slots.get(index)?;
+        slot.value.as_ref().map(|_| RawId { index: index as u32, generation: slot.generation })
+    }
+
     /// The live object in slot `index`, whatever its generation.
     pub fn iter_slot(&self, index: usize) -> Option<&T> {
         self.slots.get(index).and_then(|s| s.value.as_ref())

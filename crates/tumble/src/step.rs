@@ -4,6 +4,7 @@
 //! Today the pipeline is: the soft-step solve (forces, gravity, joints, exact rotation update, in
 //! substeps), then accumulators are cleared. Collision joins as its modules land.
 
+use crate::id::BodyId;
 use crate::math::DVec3;
 use crate::world::{World, WorldError};
 
@@ -14,14 +15,27 @@ impl World {
             return Err(WorldError::InvalidTimeStep(dt));
         }
 
-        // Wake sleeping islands that awake bodies are linked to.
-        self.wake_islands_touched_by_awake_bodies(&[]);
+        // Broad phase: move proxies, find new pairs; narrow phase: update manifolds
+        // (collision/contact_manager.rs).
+        self.contact_manager.update_proxies(&self.bodies, dt);
+        let joints = &self.joints;
+        let joined = |a: BodyId, b: BodyId| {
+            joints.iter().any(|(_, j)| {
+                !j.collide_connected && ((j.body_a == a && j.body_b == b) || (j.body_a == b && j.body_b == a))
+            })
+        };
+        self.contact_manager.find_new_contacts(&self.bodies, joined);
+        self.contact_manager.update_contacts(&self.bodies, dt);
+
+        // Wake sleeping islands that awake bodies touch or are jointed to.
+        let links = self.contact_manager.touching_links(&self.bodies);
+        self.wake_islands_touched_by_awake_bodies(&links);
 
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
         self.solve(dt);
 
         // Islands and sleep (dynamics/island.rs).
-        self.update_sleep(dt, &[]);
+        self.update_sleep(dt, &links);
 
         // Forces and torques act for one step only.
         for (_, body) in self.bodies.iter_mut() {

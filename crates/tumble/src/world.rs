@@ -2,6 +2,9 @@
 //! `step.rs` holds `World::step`.
 
 use crate::body::{Body, BodyDef, BodyKind};
+use crate::collision::contact_manager::ContactManager;
+use crate::dynamics::contact::{ContactPointView, ContactView};
+use crate::dynamics::contact_solver::ContactConstraint;
 use crate::dynamics::island::SleepSettings;
 use crate::dynamics::joint::{Joint, JointDef};
 use crate::dynamics::solver::SolverSettings;
@@ -64,6 +67,10 @@ pub struct World {
     pub(crate) sleep_settings: SleepSettings,
     /// The solver's per-body working copies, kept between steps to reuse the allocation.
     pub(crate) solver_bodies: Vec<SolverBody>,
+    /// Broad phase, contacts and their manifolds.
+    pub(crate) contact_manager: ContactManager,
+    /// The solver's contact rows, kept between steps to reuse the allocation.
+    pub(crate) contact_constraints: Vec<ContactConstraint>,
     pub(crate) gravity: DVec3,
     pub(crate) time: f64,
     pub(crate) step_count: u64,
@@ -112,6 +119,8 @@ impl World {
             solver_settings: def.solver,
             sleep_settings: def.sleep,
             solver_bodies: Vec::new(),
+            contact_manager: ContactManager::default(),
+            contact_constraints: Vec::new(),
             gravity: check_vec("gravity", def.gravity)?,
             time: 0.0,
             step_count: 0,
@@ -188,7 +197,10 @@ impl World {
             )));
         }
         let body = Body::new(&def, mass_properties, principal);
-        Ok(self.bodies.insert(body).into())
+        let id = self.bodies.insert(body);
+        let body = self.bodies.get_mut(id).expect("just inserted");
+        self.contact_manager.add_body(id.index(), body);
+        Ok(id.into())
     }
 
     /// The mass properties a definition asks for, in the body frame.
@@ -238,6 +250,18 @@ impl World {
     /// Removes a body and every joint attached to it; its id (and any copy of it) becomes stale.
     pub fn remove_body(&mut self, id: BodyId) -> Result<Body, WorldError> {
         let body = self.bodies.remove(id.into()).ok_or(WorldError::StaleBody(id))?;
+        // Bodies it touched may now fall: wake them.
+        let touching: Vec<BodyId> = self
+            .contact_manager
+            .contacts
+            .values()
+            .filter(|c| c.touching && (c.body_a == id || c.body_b == id))
+            .map(|c| if c.body_a == id { c.body_b } else { c.body_a })
+            .collect();
+        self.contact_manager.remove_body(&body);
+        for other in touching {
+            let _ = self.wake_body(other);
+        }
         let attached: Vec<_> = self
             .joints
             .iter()
@@ -310,6 +334,41 @@ impl World {
 
     pub fn joint_count(&self) -> usize {
         self.joints.len()
+    }
+
+    /// The touching contacts (manifolds with points), in a fixed order.
+    pub fn contacts(&self) -> Vec<ContactView> {
+        let substeps = f64::from(self.solver_settings.substeps);
+        self.contact_manager
+            .contacts
+            .values()
+            .filter_map(|c| {
+                let m = c.manifold.as_ref().filter(|_| c.touching)?;
+                Some(ContactView {
+                    body_a: c.body_a,
+                    body_b: c.body_b,
+                    normal: m.normal_world,
+                    sensor: c.sensor,
+                    points: m
+                        .points()
+                        .iter()
+                        .zip(&c.impulses)
+                        .map(|(p, i)| ContactPointView {
+                            point: p.point_world,
+                            separation: p.separation,
+                            normal_impulse: i.normal * substeps,
+                            tangent_impulse: i.tangent_world * substeps,
+                            feature_id: p.feature_id,
+                        })
+                        .collect(),
+                })
+            })
+            .collect()
+    }
+
+    /// Number of touching contact manifolds.
+    pub fn contact_count(&self) -> usize {
+        self.contact_manager.contacts.values().filter(|c| c.touching).count()
     }
 
     /// Number of bodies.

@@ -4,10 +4,13 @@
 
 pub mod aabb;
 pub mod broad_phase;
+pub(crate) mod contact_manager;
 pub mod dynamic_tree;
+pub mod filter;
 pub mod ray;
 
 pub use aabb::{shape_aabb, Aabb};
 pub use broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};
 pub use dynamic_tree::{DynamicTree, ProxyId};
+pub use filter::CollisionFilter;
 pub use ray::{ray_cast_shape, Ray, RayHit};

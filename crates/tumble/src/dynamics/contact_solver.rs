@@ -18,6 +18,7 @@
 //! Accumulated impulses are kept per point (matched by feature id across steps) and applied again
 //! at every substep's warm start.
 
+use crate::collision::ProxyKey;
 use crate::dynamics::joint::parts::invert_or_zero;
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver::StepContext;
@@ -46,7 +47,7 @@ pub struct ContactMaterial {
 }
 
 /// One point of a contact, as the narrow phase measured it.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct ContactPointInput {
     pub point_world: DVec3,
     pub separation: f64,
@@ -73,6 +74,8 @@ struct PointConstraint {
 /// A manifold prepared for the solver.
 #[derive(Clone, Debug)]
 pub(crate) struct ContactConstraint {
+    /// The contact this came from (its proxy pair).
+    pub key: (ProxyKey, ProxyKey),
     pub body_a: usize,
     pub body_b: usize,
     normal: DVec3,
@@ -91,12 +94,10 @@ impl ContactConstraint {
     /// start; `relax_static` selects the stiffer softness used against static bodies.
     #[allow(clippy::too_many_arguments)]
     pub fn prepare(
-        body_a: usize,
-        body_b: usize,
-        a: &SolverBody,
-        b: &SolverBody,
-        com_a: DVec3,
-        com_b: DVec3,
+        key: (ProxyKey, ProxyKey),
+        (body_a, body_b): (usize, usize),
+        (a, b): (&SolverBody, &SolverBody),
+        (com_a, com_b): (DVec3, DVec3),
         normal: DVec3,
         points: &[ContactPointInput],
         material: ContactMaterial,
@@ -106,6 +107,7 @@ impl ContactConstraint {
             if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_softness } else { ctx.contact_softness };
         let (qa_inv, qb_inv) = (a.q.inverse(), b.q.inverse());
         let mut constraint = ContactConstraint {
+            key,
             body_a,
             body_b,
             normal,

@@ -3,6 +3,7 @@
 //!
 //! See `docs/solver.md` for the derivation of the soft constraints and the stage order.
 
+pub mod contact;
 pub(crate) mod contact_solver;
 pub(crate) mod island;
 pub mod joint;

@@ -16,6 +16,7 @@
 //! iteration per substep; the relax pass removes the velocity the position bias added, so stacks
 //! rest without jitter or energy gain.
 
+use crate::dynamics::contact_solver::{ContactConstraint, ContactPointInput};
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
@@ -157,17 +158,75 @@ impl World {
             }
         }
 
+        // Prepare contacts: every touching, non-sensor manifold with a body that can move.
+        let mut contacts = std::mem::take(&mut self.contact_constraints);
+        contacts.clear();
+        for (key, contact) in &self.contact_manager.contacts {
+            let Some(manifold) = contact.manifold.as_ref().filter(|_| contact.touching && !contact.sensor) else {
+                continue;
+            };
+            let (ia, ib) = (contact.body_a.index(), contact.body_b.index());
+            if bodies[ia].inv_mass == 0.0 && bodies[ib].inv_mass == 0.0 {
+                continue;
+            }
+            let (Some(a), Some(b)) = (self.bodies.iter_slot(ia), self.bodies.iter_slot(ib)) else { continue };
+            let mut points = [ContactPointInput::default(); 4];
+            for ((input, point), impulse) in points.iter_mut().zip(manifold.points()).zip(&contact.impulses) {
+                *input = ContactPointInput {
+                    point_world: point.point_world,
+                    separation: point.separation,
+                    impulse: *impulse,
+                };
+            }
+            contacts.push(ContactConstraint::prepare(
+                *key,
+                (ia, ib),
+                (&bodies[ia], &bodies[ib]),
+                (a.com_world(), b.com_world()),
+                manifold.normal_world,
+                &points[..manifold.len()],
+                contact.material,
+                &ctx,
+            ));
+        }
+
         for _ in 0..ctx.substeps {
             for body in bodies.iter_mut() {
                 body.integrate_velocity(ctx.gravity, ctx.h);
             }
             self.for_each_joint(&mut bodies, |joint, a, b| joint.warm_start(a, b));
+            for c in contacts.iter_mut() {
+                let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
+                c.warm_start(a, b);
+            }
             self.for_each_joint(&mut bodies, |joint, a, b| joint.solve(a, b, &ctx, true));
+            for c in contacts.iter_mut() {
+                let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
+                c.solve(a, b, &ctx, true);
+            }
             for body in bodies.iter_mut() {
                 body.integrate_position(ctx.h);
             }
             self.for_each_joint(&mut bodies, |joint, a, b| joint.solve(a, b, &ctx, false));
+            for c in contacts.iter_mut() {
+                let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
+                c.solve(a, b, &ctx, false);
+            }
         }
+
+        // Restitution, then keep the impulses for the next step's warm start.
+        for c in contacts.iter_mut() {
+            let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
+            c.apply_restitution(a, b, &ctx);
+        }
+        for c in &contacts {
+            if let Some(contact) = self.contact_manager.contacts.get_mut(&c.key) {
+                for (slot, impulse) in contact.impulses.iter_mut().zip(c.impulses()) {
+                    *slot = impulse;
+                }
+            }
+        }
+        self.contact_constraints = contacts;
 
         // Store: joint breaking, then write the bodies back.
         for (_, joint) in self.joints.iter_mut() {

@@ -50,6 +50,8 @@ pub struct JointDef {
     pub kind: JointKind,
     /// The joint breaks (and stops acting) when its constraint force exceeds this, N.
     pub break_force: Option<f64>,
+    /// Whether the two jointed bodies still collide with each other. Default false.
+    pub collide_connected: bool,
 }
 
 impl JointDef {
@@ -62,6 +64,7 @@ impl JointDef {
             axis_world: DVec3::Z,
             kind,
             break_force: None,
+            collide_connected: false,
         }
     }
 }
@@ -78,6 +81,7 @@ pub struct Joint {
     pub(crate) frame_b_local: Transform,
     pub(crate) kind: JointKind,
     pub(crate) break_force: Option<f64>,
+    pub(crate) collide_connected: bool,
     pub(crate) broken: bool,
 }
 
@@ -97,6 +101,7 @@ impl Joint {
             frame_b_local: b.transform().inverse().mul_transform(&frame_world),
             kind: def.kind.clone(),
             break_force: def.break_force,
+            collide_connected: def.collide_connected,
             broken: false,
         }
     }

@@ -1,0 +1,199 @@
+//! The contact manager: keeps the broad phase's proxies in step with the bodies, turns candidate
+//! pairs into persistent contacts, and updates every contact's manifold (pipeline steps 2–3).
+//!
+//! Each leaf shape of a body (the shape itself, or each child of a compound) has one proxy. A
+//! proxy's payload packs the body slot and the leaf index. Contacts are kept in a `BTreeMap`
+//! keyed by the proxy pair (lower key first), so they are visited in the same order on every run.
+
+use std::collections::BTreeMap;
+
+use super::aabb::shape_aabb;
+use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind};
+use super::narrow_phase::{collide, PairCache};
+use crate::body::{Body, BodyKind};
+use crate::dynamics::contact::Contact;
+use crate::dynamics::contact_solver::ContactImpulse;
+use crate::dynamics::material::Material;
+use crate::id::{BodyId, SlotPool};
+use crate::math::Transform;
+use crate::shape::Shape;
+
+/// The base speculative distance, m: contacts are made this far before touching (plus the
+/// distance the pair closes within the step).
+pub const SPECULATIVE_DISTANCE: f64 = 0.02;
+
+/// The leaf shapes of a body's shape with their poses in the body frame.
+pub(crate) fn leaves(shape: &Shape) -> Vec<(&Shape, Transform)> {
+    match shape {
+        Shape::Compound(c) => c.children().iter().map(|child| (&child.shape, child.pose)).collect(),
+        other => vec![(other, Transform::IDENTITY)],
+    }
+}
+
+/// The leaf `child` of a body's shape, with its pose in the body frame.
+pub(crate) fn leaf(shape: &Shape, child: u32) -> (&Shape, Transform) {
+    match shape {
+        Shape::Compound(c) => {
+            let child = &c.children()[child as usize];
+            (&child.shape, child.pose)
+        }
+        other => (other, Transform::IDENTITY),
+    }
+}
+
+fn pack(body_slot: usize, child: usize) -> u64 {
+    ((body_slot as u64) << 32) | child as u64
+}
+
+fn unpack(data: u64) -> (usize, u32) {
+    ((data >> 32) as usize, data as u32)
+}
+
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ContactManager {
+    pub broad_phase: BroadPhase,
+    pub contacts: BTreeMap<(ProxyKey, ProxyKey), Contact>,
+}
+
+impl ContactManager {
+    /// Creates the proxies of a body's leaf shapes.
+    pub fn add_body(&mut self, slot: usize, body: &mut Body) {
+        let Some(shape) = &body.shape else { return };
+        let kind = if body.kind == BodyKind::Static { ProxyKind::Static } else { ProxyKind::Dynamic };
+        let pose = body.transform();
+        body.proxies = leaves(shape)
+            .into_iter()
+            .enumerate()
+            .map(|(i, (leaf, local))| {
+                self.broad_phase.create_proxy(shape_aabb(leaf, &pose.mul_transform(&local)), kind, pack(slot, i))
+            })
+            .collect();
+    }
+
+    /// Destroys a body's proxies and every contact that involves them.
+    pub fn remove_body(&mut self, body: &Body) {
+        for &key in &body.proxies {
+            self.broad_phase.destroy_proxy(key);
+        }
+        self.contacts.retain(|(a, b), _| !body.proxies.contains(a) && !body.proxies.contains(b));
+    }
+
+    /// Moves the proxies of awake, non-static bodies to their current poses; the fat boxes are
+    /// stretched by the distance the body will travel in the next step.
+    pub fn update_proxies(&mut self, bodies: &SlotPool<Body>, dt: f64) {
+        for (_, body) in bodies.iter() {
+            if body.kind == BodyKind::Static || !body.is_awake() {
+                continue;
+            }
+            let Some(shape) = &body.shape else { continue };
+            let pose = body.transform();
+            let displacement = body.state.linear_velocity * dt;
+            for (&key, (leaf, local)) in body.proxies.iter().zip(leaves(shape)) {
+                let aabb = shape_aabb(leaf, &pose.mul_transform(&local));
+                self.broad_phase.move_proxy(key, aabb, displacement);
+            }
+        }
+    }
+
+    /// Creates contacts for new candidate pairs that may collide.
+    pub fn find_new_contacts(&mut self, bodies: &SlotPool<Body>, joined: impl Fn(BodyId, BodyId) -> bool) {
+        for (key_a, key_b) in self.broad_phase.find_new_pairs() {
+            if self.contacts.contains_key(&(key_a, key_b)) {
+                continue;
+            }
+            let (slot_a, child_a) = unpack(self.broad_phase.user_data(key_a));
+            let (slot_b, child_b) = unpack(self.broad_phase.user_data(key_b));
+            if slot_a == slot_b {
+                continue;
+            }
+            let (Some((id_a, a)), Some((id_b, b))) = (slot_body(bodies, slot_a), slot_body(bodies, slot_b)) else {
+                continue;
+            };
+            if a.kind != BodyKind::Dynamic && b.kind != BodyKind::Dynamic {
+                continue;
+            }
+            if !a.filter.accepts(&b.filter) || joined(id_a, id_b) {
+                continue;
+            }
+            self.contacts.insert(
+                (key_a, key_b),
+                Contact {
+                    proxy_a: key_a,
+                    proxy_b: key_b,
+                    body_a: id_a,
+                    body_b: id_b,
+                    child_a,
+                    child_b,
+                    manifold: None,
+                    impulses: [ContactImpulse::default(); 4],
+                    cache: PairCache::default(),
+                    material: Material::combine(&a.material, &b.material),
+                    sensor: a.is_sensor || b.is_sensor,
+                    touching: false,
+                },
+            );
+        }
+    }
+
+    /// Updates every contact: drops those whose fat boxes parted, recomputes the manifolds of the
+    /// rest (where a body is awake). `dt` sizes the speculative margin.
+    pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64) {
+        let broad_phase = &self.broad_phase;
+        self.contacts.retain(|_, contact| {
+            let overlap: bool = broad_phase.fat_aabb(contact.proxy_a).overlaps(&broad_phase.fat_aabb(contact.proxy_b));
+            if !overlap {
+                return false;
+            }
+            let (Some(a), Some(b)) = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into())) else {
+                return false;
+            };
+            if !a.is_awake() && !b.is_awake() {
+                return true;
+            }
+            update_manifold(contact, a, b, dt);
+            true
+        });
+    }
+
+    /// Body-slot pairs of touching, non-sensor contacts between two dynamic bodies (island links).
+    pub fn touching_links(&self, bodies: &SlotPool<Body>) -> Vec<(u32, u32)> {
+        self.contacts
+            .values()
+            .filter(|c| c.touching && !c.sensor)
+            .filter(|c| {
+                let dynamic = |id: BodyId| bodies.get(id.into()).is_some_and(|b| b.kind == BodyKind::Dynamic);
+                dynamic(c.body_a) && dynamic(c.body_b)
+            })
+            .map(|c| (c.body_a.index() as u32, c.body_b.index() as u32))
+            .collect()
+    }
+}
+
+fn slot_body(bodies: &SlotPool<Body>, slot: usize) -> Option<(BodyId, &Body)> {
+    let id = bodies.id_of_slot(slot)?;
+    Some((BodyId::from(id), bodies.get(id)?))
+}
+
+/// Runs the narrow phase for one contact at the bodies' current poses.
+fn update_manifold(contact: &mut Contact, a: &Body, b: &Body, dt: f64) {
+    let (Some(shape_a), Some(shape_b)) = (&a.shape, &b.shape) else {
+        contact.set_manifold(None);
+        return;
+    };
+    let (leaf_a, local_a) = leaf(shape_a, contact.child_a);
+    let (leaf_b, local_b) = leaf(shape_b, contact.child_b);
+    let pose_a = a.transform().mul_transform(&local_a);
+    let pose_b = b.transform().mul_transform(&local_b);
+    // Contacts within reach of this step's relative motion are made now, so the solver can stop
+    // the bodies at the surface (speculative contact).
+    let spin = |body: &Body, pose: &Transform, shape: &Shape| {
+        body.state.angular_velocity.length() * shape_aabb(shape, pose).half_extents().length()
+    };
+    let closing = ((a.state.linear_velocity - b.state.linear_velocity).length()
+        + spin(a, &pose_a, leaf_a)
+        + spin(b, &pose_b, leaf_b))
+        * dt;
+    let margin = SPECULATIVE_DISTANCE + closing;
+    let manifold = collide(leaf_a, &pose_a, leaf_b, &pose_b, margin, &mut contact.cache);
+    contact.set_manifold(manifold);
+}

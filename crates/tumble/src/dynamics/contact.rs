@@ -1,0 +1,72 @@
+//! Contacts: one per pair of shapes whose fat bounding boxes overlap, kept from step to step.
+//! A contact holds the current manifold, the impulses of its points (matched across steps by
+//! feature id, for warm starting) and the narrow phase's cache for the pair.
+
+use crate::collision::manifold::Manifold;
+use crate::collision::narrow_phase::PairCache;
+use crate::collision::ProxyKey;
+use crate::dynamics::contact_solver::{ContactImpulse, ContactMaterial};
+use crate::id::BodyId;
+use crate::math::DVec3;
+
+#[derive(Clone, Debug)]
+pub(crate) struct Contact {
+    pub proxy_a: ProxyKey,
+    pub proxy_b: ProxyKey,
+    pub body_a: BodyId,
+    pub body_b: BodyId,
+    /// Leaf shape index within each body's shape (compound child, or 0).
+    pub child_a: u32,
+    pub child_b: u32,
+    pub manifold: Option<Manifold>,
+    /// Impulses of the manifold's points, in the manifold's point order.
+    pub impulses: [ContactImpulse; 4],
+    pub cache: PairCache,
+    pub material: ContactMaterial,
+    /// One of the shapes is a sensor: overlap is reported, no contact force acts.
+    pub sensor: bool,
+    /// The manifold has points (within the speculative margin) — the pair links islands.
+    pub touching: bool,
+}
+
+impl Contact {
+    /// Replaces the manifold, carrying impulses over to points with the same feature id.
+    pub fn set_manifold(&mut self, manifold: Option<Manifold>) {
+        let mut impulses = [ContactImpulse::default(); 4];
+        if let (Some(old), Some(new)) = (&self.manifold, &manifold) {
+            for (slot, point) in impulses.iter_mut().zip(new.points()) {
+                if let Some(i) = old.points().iter().position(|p| p.feature_id == point.feature_id) {
+                    *slot = self.impulses[i];
+                }
+            }
+        }
+        self.touching = manifold.as_ref().is_some_and(|m| !m.is_empty());
+        self.manifold = manifold;
+        self.impulses = impulses;
+    }
+}
+
+/// A read-only view of one contact point, for users.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactPointView {
+    /// Midpoint between the surfaces, world frame.
+    pub point: DVec3,
+    /// Signed distance along the normal (negative = penetration), m.
+    pub separation: f64,
+    /// Normal impulse of the last step (summed over substeps is `impulse × substeps`), N·s.
+    pub normal_impulse: f64,
+    /// Friction impulse of the last substep, world frame, N·s.
+    pub tangent_impulse: DVec3,
+    pub feature_id: u32,
+}
+
+/// A read-only view of a touching contact, for users.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactView {
+    pub body_a: BodyId,
+    pub body_b: BodyId,
+    /// Unit normal from a towards b, world frame.
+    pub normal: DVec3,
+    pub points: Vec<ContactPointView>,
+    pub sensor: bool,
+}
