@@ -6,6 +6,7 @@
 //! Conventions: f64, SI units, right-handed with **Z up**, quaternions as (x, y, z, w).
 
 pub mod body;
+pub mod collision;
 pub mod id;
 pub mod integrate;
 pub mod mass;
@@ -18,5 +19,7 @@ pub use body::{Body, BodyDef, BodyKind, BodyState};
 pub use id::BodyId;
 pub use mass::{MassError, MassProperties, PrincipalFrame};
 pub use math::{DMat3, DQuat, DVec3, Transform};
-pub use shape::{Capsule, Compound, CompoundChild, Cone, Cuboid, Cylinder, Shape, Sphere, TriMesh};
+pub use shape::{
+    Capsule, Compound, CompoundChild, Cone, ConvexHull, Cuboid, Cylinder, HullError, Shape, Sphere, TriMesh,
+};
 pub use world::{World, WorldDef, WorldError};
