@@ -23,5 +23,7 @@ pub use dynamics::{Material, SleepSettings};
 pub use id::{BodyId, JointId};
 pub use mass::{MassError, MassProperties, PrincipalFrame};
 pub use math::{DMat3, DQuat, DVec3, Transform};
-pub use shape::{Capsule, Compound, CompoundChild, Cone, Cuboid, Cylinder, Shape, Sphere, TriMesh};
+pub use shape::{
+    Capsule, Compound, CompoundChild, Cone, ConvexHull, Cuboid, Cylinder, HullError, Shape, Sphere, TriMesh,
+};
 pub use world::{World, WorldDef, WorldError};

@@ -162,6 +162,7 @@ pub fn shape_aabb(shape: &Shape, pose: &Transform) -> Aabb {
             Aabb { min: apex.min(base - disc), max: apex.max(base + disc) }
         }
         Shape::TriMesh(m) => points_aabb(m.vertices(), pose),
+        Shape::ConvexHull(h) => points_aabb(h.vertices(), pose),
         Shape::Compound(c) => c.children().iter().fold(Aabb::EMPTY, |b, child| {
             b.union(&shape_aabb(&child.shape, &pose.mul_transform(&child.pose)))
         }),

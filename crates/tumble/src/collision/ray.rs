@@ -75,6 +75,7 @@ pub fn ray_cast_shape(shape: &Shape, pose: &Transform, ray: &Ray) -> Option<RayH
         Shape::Cone(c) => cone_local(o, d, c),
         Shape::TriMesh(m) => ray_cast_mesh_local(m.vertices(), m.triangles(), o, d, max_t)
             .map(|(t, n_local)| (t, Some(n_local))),
+        Shape::ConvexHull(h) => hull_local(o, d, h),
         Shape::Compound(_) => unreachable!("handled above"),
     };
     let (distance, normal_local) = local?;
@@ -105,6 +106,39 @@ fn sphere_local(o: DVec3, d: DVec3, r: f64) -> Option<LocalHit> {
     }
     let t = sphere_entry(o, d, DVec3::ZERO, r).filter(|&t| t >= 0.0)?;
     Some((t, Some((o + t * d) / r)))
+}
+
+/// A convex polytope is the intersection of its face half-spaces: clip the ray's parameter
+/// interval against each plane (Cyrus–Beck); the entering plane gives the normal.
+fn hull_local(o: DVec3, d: DVec3, hull: &crate::shape::ConvexHull) -> Option<LocalHit> {
+    let (mut t_enter, mut t_exit) = (f64::NEG_INFINITY, f64::INFINITY);
+    let mut normal = None;
+    for face in hull.faces() {
+        let distance = face.normal.dot(o) - face.offset; // > 0: origin outside this plane
+        let rate = face.normal.dot(d);
+        if rate == 0.0 {
+            if distance > 0.0 {
+                return None; // parallel and outside
+            }
+            continue;
+        }
+        let t = -distance / rate;
+        if rate < 0.0 {
+            if t > t_enter {
+                t_enter = t;
+                normal = Some(face.normal);
+            }
+        } else {
+            t_exit = t_exit.min(t);
+        }
+    }
+    if t_enter > t_exit || t_exit < 0.0 {
+        return None;
+    }
+    if t_enter <= 0.0 {
+        return Some((0.0, None)); // the origin is inside
+    }
+    Some((t_enter, normal))
 }
 
 fn cuboid_local(o: DVec3, d: DVec3, c: &Cuboid) -> Option<LocalHit> {

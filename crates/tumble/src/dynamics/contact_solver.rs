@@ -54,8 +54,9 @@ pub(crate) struct ContactPointInput {
     pub impulse: ContactImpulse,
 }
 
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 struct PointConstraint {
+    softness: Softness,
     r_a_local: DVec3,
     r_b_local: DVec3,
     /// Separation at the step start minus `n·(r_b − r_a)` then: adding `n·(current r_b − r_a +
@@ -71,6 +72,21 @@ struct PointConstraint {
     relative_velocity: f64,
 }
 
+impl PointConstraint {
+    const EMPTY: PointConstraint = PointConstraint {
+        softness: Softness::RIGID_VELOCITY,
+        r_a_local: DVec3::ZERO,
+        r_b_local: DVec3::ZERO,
+        adjusted_separation: 0.0,
+        normal_mass: 0.0,
+        tangent_mass: DMat3::ZERO,
+        normal_impulse: 0.0,
+        tangent_impulse: DVec3::ZERO,
+        max_normal_impulse: 0.0,
+        relative_velocity: 0.0,
+    };
+}
+
 /// A manifold prepared for the solver.
 #[derive(Clone, Debug)]
 pub(crate) struct ContactConstraint {
@@ -80,7 +96,6 @@ pub(crate) struct ContactConstraint {
     pub body_b: usize,
     normal: DVec3,
     material: ContactMaterial,
-    softness: Softness,
     points: [PointConstraint; 4],
     point_count: usize,
     /// Angular effective mass of the pair, `(I_a⁻¹ + I_b⁻¹)⁻¹`, for rolling and torsion.
@@ -103,8 +118,8 @@ impl ContactConstraint {
         material: ContactMaterial,
         ctx: &StepContext,
     ) -> ContactConstraint {
-        let softness =
-            if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_softness } else { ctx.contact_softness };
+        let hertz = if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
+        let gravity = ctx.gravity.length();
         let (qa_inv, qb_inv) = (a.q.inverse(), b.q.inverse());
         let mut constraint = ContactConstraint {
             key,
@@ -112,8 +127,7 @@ impl ContactConstraint {
             body_b,
             normal,
             material,
-            softness,
-            points: [PointConstraint::default(); 4],
+            points: [PointConstraint::EMPTY; 4],
             point_count: points.len().min(4),
             angular_mass: invert_or_zero(a.inv_inertia + b.inv_inertia),
             rolling_impulse: DVec3::ZERO,
@@ -130,11 +144,21 @@ impl ContactConstraint {
             // unit entry so the 3×3 is invertible, then is projected away).
             let kt = tangent_projector * k * tangent_projector + outer(normal, normal);
             let relative_velocity = normal.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
+            let normal_mass = if kn > 0.0 { 1.0 / kn } else { 0.0 };
+            // Load-aware stiffness. A soft contact is a spring of stiffness m·ω² for the point's
+            // effective mass m; under a load M (the weight of a stack above, read from last step's
+            // impulse) it would sag by M·g/(m·ω²) — centimetres at the foot of a tall stack. Sizing
+            // the spring for the mass it carries, k = max(m, M)·ω², keeps the sag at g/ω² per
+            // contact and the loaded system ringing at the chosen frequency.
+            let load_mass = if gravity > 0.0 { input.impulse.normal / (ctx.h * gravity) } else { 0.0 };
+            let ratio = if normal_mass > 0.0 { (load_mass / normal_mass).max(1.0).min(1.0) } else { 1.0 };
+            let softness = Softness::new(hertz * ratio.sqrt(), ctx.contact_damping_ratio, ctx.h);
             *pc = PointConstraint {
+                softness,
                 r_a_local: qa_inv * r_a,
                 r_b_local: qb_inv * r_b,
                 adjusted_separation: input.separation - normal.dot(r_b - r_a),
-                normal_mass: if kn > 0.0 { 1.0 / kn } else { 0.0 },
+                normal_mass,
                 tangent_mass: tangent_projector * invert_or_zero(kt) * tangent_projector,
                 normal_impulse: if ctx.warm_starting { input.impulse.normal } else { 0.0 },
                 tangent_impulse: if ctx.warm_starting {
@@ -177,7 +201,7 @@ impl ContactConstraint {
                 // Speculative: allow closing the gap, no more.
                 (s * ctx.inv_h, 1.0, 0.0)
             } else if use_bias {
-                let soft = self.softness;
+                let soft = pc.softness;
                 (
                     (soft.bias_rate * s).max(-ctx.max_contact_push_velocity),
                     soft.mass_scale,

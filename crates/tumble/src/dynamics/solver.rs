@@ -69,9 +69,11 @@ pub(crate) struct StepContext {
     pub substeps: u32,
     pub gravity: DVec3,
     pub joint_softness: Softness,
-    pub contact_softness: Softness,
+    /// Stiffness of contacts between two moving bodies, Hz (capped).
+    pub contact_hertz: f64,
     /// Contacts against static (or kinematic) bodies: twice as stiff, since only one body moves.
-    pub static_softness: Softness,
+    pub static_contact_hertz: f64,
+    pub contact_damping_ratio: f64,
     pub max_contact_push_velocity: f64,
     pub restitution_threshold: f64,
     pub warm_starting: bool,
@@ -96,16 +98,9 @@ impl StepContext {
                 settings.joint_damping_ratio,
                 h,
             ),
-            contact_softness: Softness::new(
-                settings.contact_hertz.min(max_hertz),
-                settings.contact_damping_ratio,
-                h,
-            ),
-            static_softness: Softness::new(
-                (2.0 * settings.contact_hertz).min(2.0 * max_hertz),
-                settings.contact_damping_ratio,
-                h,
-            ),
+            contact_hertz: settings.contact_hertz.min(max_hertz),
+            static_contact_hertz: (2.0 * settings.contact_hertz).min(2.0 * max_hertz),
+            contact_damping_ratio: settings.contact_damping_ratio,
             max_contact_push_velocity: settings.max_contact_push_velocity,
             restitution_threshold: settings.restitution_threshold,
             warm_starting: settings.warm_starting,

@@ -6,10 +6,12 @@
 use crate::mass::{MassError, MassProperties};
 
 mod compound;
+mod convex_hull;
 mod primitives;
 mod trimesh;
 
 pub use compound::{Compound, CompoundChild};
+pub use convex_hull::{ConvexHull, HullEdge, HullError, HullFace};
 pub use primitives::{Capsule, Cone, Cuboid, Cylinder, Sphere};
 pub use trimesh::TriMesh;
 
@@ -21,6 +23,8 @@ pub enum Shape {
     Capsule(Capsule),
     Cylinder(Cylinder),
     Cone(Cone),
+    /// A convex polyhedron (quickhull of a point cloud).
+    ConvexHull(ConvexHull),
     /// A closed triangle mesh (its mass properties by the Mirtich–Eberly volume integrals).
     TriMesh(TriMesh),
     Compound(Compound),
@@ -35,6 +39,7 @@ impl Shape {
             Shape::Capsule(s) => MassProperties::capsule(s.radius, s.half_height, density),
             Shape::Cylinder(s) => MassProperties::cylinder(s.radius, s.half_height, density),
             Shape::Cone(s) => MassProperties::cone(s.radius, s.half_height, density),
+            Shape::ConvexHull(h) => MassProperties::from_mesh(h.vertices(), &h.triangles(), density),
             Shape::TriMesh(m) => MassProperties::from_mesh(m.vertices(), m.triangles(), density),
             Shape::Compound(c) => {
                 let parts = c
@@ -55,6 +60,7 @@ impl Shape {
             Shape::Capsule(_) => "capsule",
             Shape::Cylinder(_) => "cylinder",
             Shape::Cone(_) => "cone",
+            Shape::ConvexHull(_) => "hull",
             Shape::TriMesh(_) => "mesh",
             Shape::Compound(_) => "compound",
         }

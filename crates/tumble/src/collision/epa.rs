@@ -1,0 +1,231 @@
+//! EPA, the expanding polytope algorithm (van den Bergen 2001): penetration depth and direction of
+//! two overlapping convex cores.
+//!
+//! When GJK reports overlap, the origin lies inside `A − B`. The penetration depth is the distance
+//! from the origin to the boundary of `A − B`, and the direction to that nearest boundary point is
+//! the contact normal: translating B by `depth · normal` separates the cores. EPA starts from a
+//! tetrahedron of support points around the origin and grows it: take the face nearest the
+//! origin, fetch the support point along its normal; if that point is no farther than the face,
+//! the face lies on the boundary and we are done; otherwise cut out every face that sees the new
+//! point and re-triangulate the hole (a fan from the horizon edges to the point). Faces are kept
+//! outward-wound, so face normals point away from the origin.
+//!
+//! GJK may stop with a point, segment or triangle when the origin lies on it (touching cores); the
+//! simplex is then "blown up" to a tetrahedron with extra support points first.
+
+use super::gjk::{ConvexPair, Simplex, SupportPoint};
+use crate::math::DVec3;
+
+/// Penetration of two cores, in A's local frame.
+#[derive(Clone, Copy, Debug)]
+pub struct EpaResult {
+    /// Penetration depth, ≥ 0.
+    pub depth: f64,
+    /// Unit normal from A towards B: move B by `depth · normal` to separate.
+    pub normal: DVec3,
+    /// Deepest point of A inside B, and of B inside A (`point_b − point_a = −depth · normal`).
+    pub point_a: DVec3,
+    pub point_b: DVec3,
+}
+
+#[derive(Clone, Copy)]
+struct Face {
+    v: [usize; 3],
+    normal: DVec3,
+    distance: f64,
+}
+
+const MAX_ITERATIONS: usize = 128;
+/// Converged when the support along the nearest face's normal is within this (× scale) of it.
+const REL_TOLERANCE: f64 = 1e-9;
+
+/// Penetration depth and normal from GJK's final simplex. `None` only if `A − B` is flat (both
+/// cores lower-dimensional, e.g. two segments), where depth is not defined by a polytope.
+pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
+    let scale = pair.scale();
+    let tol = REL_TOLERANCE * scale;
+    let mut verts = blow_up(pair, simplex, 1e-9 * scale)?;
+
+    // Wind the tetrahedron so each face normal points away from the opposite vertex.
+    let n012 = (verts[1].w - verts[0].w).cross(verts[2].w - verts[0].w);
+    if n012.dot(verts[3].w - verts[0].w) > 0.0 {
+        verts.swap(1, 2);
+    }
+    let mut faces: Vec<Face> =
+        [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]].iter().map(|&v| make_face(&verts, v)).collect();
+
+    let mut best = 0;
+    for _ in 0..MAX_ITERATIONS {
+        best = nearest_face(&faces);
+        let face = faces[best];
+        let p = pair.support(face.normal);
+        if face.normal.dot(p.w) - face.distance <= tol {
+            break;
+        }
+        let new_index = verts.len();
+        verts.push(p);
+        // Remove every face that sees the new point; collect the horizon as the edges that only
+        // one removed face owns (an edge of two removed faces appears once in each direction).
+        let mut horizon: Vec<(usize, usize)> = Vec::new();
+        faces.retain(|f| {
+            let sees = f.normal.dot(p.w - verts[f.v[0]].w) > 0.0;
+            if sees {
+                for k in 0..3 {
+                    let (a, b) = (f.v[k], f.v[(k + 1) % 3]);
+                    if let Some(i) = horizon.iter().position(|&e| e == (b, a)) {
+                        horizon.swap_remove(i);
+                    } else {
+                        horizon.push((a, b));
+                    }
+                }
+            }
+            !sees
+        });
+        if horizon.is_empty() {
+            // Numerically stuck: the point was not beyond any face after all.
+            verts.pop();
+            best = nearest_face(&faces);
+            break;
+        }
+        for (a, b) in horizon {
+            faces.push(make_face(&verts, [a, b, new_index]));
+        }
+        best = nearest_face(&faces);
+    }
+    let face = faces[best];
+    let lam = barycentric(face.normal * face.distance, face.v.map(|i| verts[i].w));
+    let mut point_a = DVec3::ZERO;
+    let mut point_b = DVec3::ZERO;
+    for k in 0..3 {
+        point_a += verts[face.v[k]].a * lam[k];
+        point_b += verts[face.v[k]].b * lam[k];
+    }
+    Some(EpaResult { depth: face.distance.max(0.0), normal: face.normal, point_a, point_b })
+}
+
+fn make_face(verts: &[SupportPoint], v: [usize; 3]) -> Face {
+    let [a, b, c] = v.map(|i| verts[i].w);
+    let n = (b - a).cross(c - a);
+    match n.try_normalize() {
+        Some(normal) => Face { v, normal, distance: normal.dot(a) },
+        // A sliver face has no direction; never pick it as the nearest.
+        None => Face { v, normal: DVec3::ZERO, distance: f64::INFINITY },
+    }
+}
+
+fn nearest_face(faces: &[Face]) -> usize {
+    let mut best = 0;
+    for (i, f) in faces.iter().enumerate() {
+        if f.distance < faces[best].distance {
+            best = i;
+        }
+    }
+    best
+}
+
+/// Barycentric weights of `p` (on the triangle's plane) in triangle `t`, clamped to the triangle.
+fn barycentric(p: DVec3, t: [DVec3; 3]) -> [f64; 3] {
+    let (e0, e1, ep) = (t[1] - t[0], t[2] - t[0], p - t[0]);
+    let (d00, d01, d11) = (e0.dot(e0), e0.dot(e1), e1.dot(e1));
+    let (d20, d21) = (ep.dot(e0), ep.dot(e1));
+    let denom = d00 * d11 - d01 * d01;
+    if denom <= 0.0 {
+        return [1.0, 0.0, 0.0];
+    }
+    let v = ((d11 * d20 - d01 * d21) / denom).clamp(0.0, 1.0);
+    let w = ((d00 * d21 - d01 * d20) / denom).clamp(0.0, 1.0 - v);
+    [1.0 - v - w, v, w]
+}
+
+/// Grows GJK's simplex to a tetrahedron of non-zero volume that still contains the origin (on its
+/// boundary at worst), using extra support points.
+fn blow_up(pair: &ConvexPair, simplex: &Simplex, tol: f64) -> Option<Vec<SupportPoint>> {
+    let mut verts: Vec<SupportPoint> = Vec::with_capacity(MAX_ITERATIONS + 4);
+    for p in simplex.as_slice() {
+        if verts.iter().all(|q| (q.w - p.w).length() > tol) {
+            verts.push(*p);
+        }
+    }
+    if verts.len() == 4 {
+        let [a, b, c, d] = [0, 1, 2, 3].map(|i| verts[i].w);
+        if (b - a).dot((c - a).cross(d - a)).abs() <= tol * tol * tol {
+            verts.truncate(3);
+        }
+    }
+    if verts.is_empty() {
+        verts.push(pair.support(DVec3::X));
+    }
+    if verts.len() == 1 {
+        for dir in [DVec3::X, -DVec3::X, DVec3::Y, -DVec3::Y, DVec3::Z, -DVec3::Z] {
+            let p = pair.support(dir);
+            if (p.w - verts[0].w).length() > tol {
+                verts.push(p);
+                break;
+            }
+        }
+    }
+    if verts.len() == 2 {
+        let d = (verts[1].w - verts[0].w).normalize_or_zero();
+        let axis = [DVec3::X, DVec3::Y, DVec3::Z][d.abs().min_position()];
+        let u = d.cross(axis).normalize();
+        let v = d.cross(u);
+        for k in 0..6 {
+            let angle = k as f64 * std::f64::consts::FRAC_PI_3;
+            let p = pair.support(u * angle.cos() + v * angle.sin());
+            if (p.w - verts[0].w).cross(d).length() > tol {
+                verts.push(p);
+                break;
+            }
+        }
+    }
+    if verts.len() == 3 {
+        let n = (verts[1].w - verts[0].w).cross(verts[2].w - verts[0].w).normalize_or_zero();
+        for dir in [n, -n] {
+            let p = pair.support(dir);
+            if n.dot(p.w - verts[0].w).abs() > tol {
+                verts.push(p);
+                break;
+            }
+        }
+    }
+    (verts.len() == 4).then_some(verts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::gjk::gjk;
+    use super::super::support::Core;
+    use super::*;
+    use crate::math::{DQuat, Transform};
+
+    #[test]
+    fn box_box_face_depth() {
+        let a = Core::Cuboid { half_extents: DVec3::new(2.0, 2.0, 0.5) };
+        let b = Core::Cuboid { half_extents: DVec3::splat(0.5) };
+        let pose_a = Transform::new(DVec3::new(3.0, -1.0, 0.0), DQuat::IDENTITY);
+        let pose_b = Transform::new(DVec3::new(3.2, -0.9, 0.9), DQuat::from_rotation_z(0.4));
+        let pair = ConvexPair::new(a, &pose_a, b, &pose_b);
+        let g = gjk(&pair, pair.b_in_a.translation);
+        assert!(g.overlapping);
+        let e = epa(&pair, &g.simplex).unwrap();
+        assert!((e.depth - 0.1).abs() < 1e-9, "{}", e.depth);
+        assert!((e.normal - DVec3::Z).length() < 1e-9);
+    }
+
+    #[test]
+    fn touching_point_core_blows_up() {
+        // A point core exactly on the face of a box: GJK stops on a lower-dimensional simplex.
+        let a = Core::Cuboid { half_extents: DVec3::ONE };
+        let pair = ConvexPair::new(
+            a,
+            &Transform::IDENTITY,
+            Core::Point,
+            &Transform::new(DVec3::new(0.3, 0.2, 1.0), DQuat::IDENTITY),
+        );
+        let g = gjk(&pair, DVec3::Z);
+        assert!(g.overlapping);
+        let e = epa(&pair, &g.simplex).unwrap();
+        assert!(e.depth.abs() < 1e-9);
+        assert!((e.normal - DVec3::Z).length() < 1e-6);
+    }
+}

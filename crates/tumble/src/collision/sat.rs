@@ -1,0 +1,341 @@
+//! Box–box and hull–hull contact by the separating-axis test (Gregorius, "The Separating Axis Test
+//! between Convex Polyhedra", GDC 2013).
+//!
+//! Two convex polyhedra are disjoint exactly when some face normal of either, or the cross product
+//! of an edge of each, separates them. The signed separation along each candidate axis is cheap;
+//! the largest one is the distance bound when positive and the (negated) penetration depth when
+//! negative. Edge pairs are pruned on the Gauss map: an edge of A and an edge of B span a face of
+//! the Minkowski difference only if their Gauss-map arcs (between the normals of the edge's two
+//! faces, B's negated) cross — everything else cannot realise the separation and is skipped, which
+//! turns the O(E_A·E_B·V) test into O(E_A·E_B).
+//!
+//! The winning axis decides the contact: a face axis clips the other shape's most anti-parallel
+//! face against the reference face (see `clip`), an edge axis gives the closest points of the two
+//! edges. Face axes get a relative bias so that resting contacts stay faces, and a [`SatCache`]
+//! keeps last step's reference face unless another axis is clearly better, so a resting box keeps
+//! its reference face, and its feature ids, from step to step.
+
+use super::clip::clip_to_face;
+use super::manifold::{ContactPoint, Manifold};
+use super::polytope::Polytope;
+use super::segment::closest_segment_segment;
+use crate::math::{DVec3, Transform};
+
+/// Which axis separated (or least penetrated) last time.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SatFeature {
+    #[default]
+    None,
+    FaceA(u32),
+    FaceB(u32),
+    EdgePair(u32, u32),
+}
+
+/// What the test found last step for this pair; pass it back next step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SatCache {
+    pub feature: SatFeature,
+    pub separation: f64,
+}
+
+/// The best axis of each kind, in A's local frame.
+#[derive(Clone, Copy, Debug)]
+pub struct SatQuery {
+    pub face_a: (usize, f64),
+    pub face_b: (usize, f64),
+    /// Edge of A, edge of B, separation, axis (A → B). Separation −∞ when no pair qualifies.
+    pub edges: (usize, usize, f64, DVec3),
+}
+
+impl SatQuery {
+    /// The largest separation over all axes: the penetration depth when negative.
+    pub fn max_separation(&self) -> f64 {
+        self.face_a.1.max(self.face_b.1).max(self.edges.2)
+    }
+}
+
+/// An edge pair must beat the best face by this fraction of |separation| (plus an absolute slop).
+const EDGE_REL_TOLERANCE: f64 = 0.1;
+/// Face B must beat face A by this fraction when there is a cached face to keep.
+const KEEP_REL_TOLERANCE: f64 = 0.05;
+/// Edges closer than this sine of an angle to parallel give no axis (their faces' normals do).
+const PARALLEL_SINE: f64 = 0.005;
+
+/// B seen from A's frame: B's vertices and face normals mapped once, then reused by every query.
+struct Frames<'p, 'h> {
+    a: &'p Polytope<'h>,
+    b: &'p Polytope<'h>,
+    b_in_a: Transform,
+    verts_b: Vec<DVec3>,
+    normals_b: Vec<DVec3>,
+}
+
+impl<'p, 'h> Frames<'p, 'h> {
+    fn new(a: &'p Polytope<'h>, pose_a: &Transform, b: &'p Polytope<'h>, pose_b: &Transform) -> Self {
+        let b_in_a = pose_a.inverse().mul_transform(pose_b);
+        let verts_b = (0..b.vertex_count()).map(|i| b_in_a.transform_point(b.vertex(i))).collect();
+        let normals_b = (0..b.face_count()).map(|f| b_in_a.rotation * b.face_normal(f)).collect();
+        Frames { a, b, b_in_a, verts_b, normals_b }
+    }
+
+    fn support_b(&self, dir: DVec3) -> DVec3 {
+        self.verts_b[self.b.support_index(self.b_in_a.rotation.inverse() * dir)]
+    }
+
+    fn face_a(&self, f: usize) -> f64 {
+        let n = self.a.face_normal(f);
+        n.dot(self.support_b(-n)) - self.a.face_offset(f)
+    }
+
+    fn face_b(&self, f: usize) -> f64 {
+        let n = self.normals_b[f];
+        let on_face = self.verts_b[self.b.face_vertices(f)[0] as usize];
+        n.dot(self.a.vertex(self.a.support_index(-n)) - on_face)
+    }
+
+    /// Separation along the cross product of edge `ea` of A and `eb` of B, or `None` when the
+    /// pair is pruned (not a Minkowski face) or the edges are parallel.
+    fn edge_pair(&self, ea: usize, eb: usize) -> Option<(f64, DVec3)> {
+        let edge_a = self.a.edges()[ea];
+        let edge_b = self.b.edges()[eb];
+        let (ua, va) =
+            (self.a.face_normal(edge_a.faces[0] as usize), self.a.face_normal(edge_a.faces[1] as usize));
+        let (ub, vb) = (self.normals_b[edge_b.faces[0] as usize], self.normals_b[edge_b.faces[1] as usize]);
+        if !is_minkowski_face(ua, va, -ub, -vb) {
+            return None;
+        }
+        let pa = self.a.vertex(edge_a.vertices[0] as usize);
+        let da = self.a.vertex(edge_a.vertices[1] as usize) - pa;
+        let pb = self.verts_b[edge_b.vertices[0] as usize];
+        let db = self.verts_b[edge_b.vertices[1] as usize] - pb;
+        let axis = da.cross(db);
+        let len = axis.length();
+        if len < PARALLEL_SINE * (da.length_squared() * db.length_squared()).sqrt() {
+            return None;
+        }
+        let mut n = axis / len;
+        if n.dot(pa - self.a.interior_point()) < 0.0 {
+            n = -n;
+        }
+        Some((n.dot(pb - pa), n))
+    }
+
+    fn query(&self) -> SatQuery {
+        let best = |count: usize, f: &dyn Fn(usize) -> f64| {
+            (0..count).map(|i| (i, f(i))).fold((0, f64::NEG_INFINITY), |m, x| if x.1 > m.1 { x } else { m })
+        };
+        let face_a = best(self.a.face_count(), &|f| self.face_a(f));
+        let face_b = best(self.b.face_count(), &|f| self.face_b(f));
+        let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
+        for ea in 0..self.a.edges().len() {
+            for eb in 0..self.b.edges().len() {
+                if let Some((s, n)) = self.edge_pair(ea, eb) {
+                    if s > edges.2 {
+                        edges = (ea, eb, s, n);
+                    }
+                }
+            }
+        }
+        SatQuery { face_a, face_b, edges }
+    }
+}
+
+/// Do the Gauss-map arcs `a → b` and `c → d` (unit normals) cross? They do when c and d lie on
+/// opposite sides of the plane through a and b, a and b on opposite sides of the plane through c
+/// and d, and both arcs lie in the same hemisphere (the last sign test).
+fn is_minkowski_face(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
+    let b_x_a = b.cross(a);
+    let d_x_c = d.cross(c);
+    let cba = c.dot(b_x_a);
+    let dba = d.dot(b_x_a);
+    let adc = a.dot(d_x_c);
+    let bdc = b.dot(d_x_c);
+    cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0
+}
+
+/// The separating-axis queries alone (for tests and diagnostics).
+pub fn sat_query(a: &Polytope, pose_a: &Transform, b: &Polytope, pose_b: &Transform) -> SatQuery {
+    Frames::new(a, pose_a, b, pose_b).query()
+}
+
+/// Contact manifold of two polyhedra, or `None` when they are more than `margin` apart.
+pub fn collide_polytopes(
+    a: &Polytope,
+    pose_a: &Transform,
+    b: &Polytope,
+    pose_b: &Transform,
+    margin: f64,
+    cache: &mut SatCache,
+) -> Option<Manifold> {
+    let frames = Frames::new(a, pose_a, b, pose_b);
+    // Last step's axis, re-measured: if it still separates, nothing else needs testing.
+    let cached = match cache.feature {
+        SatFeature::FaceA(f) if (f as usize) < a.face_count() => Some(frames.face_a(f as usize)),
+        SatFeature::FaceB(f) if (f as usize) < b.face_count() => Some(frames.face_b(f as usize)),
+        _ => None,
+    };
+    if let Some(s) = cached {
+        if s > margin {
+            cache.separation = s;
+            return None;
+        }
+    }
+    let q = frames.query();
+    let best = q.max_separation();
+    if best > margin {
+        cache.feature = if q.face_a.1 == best {
+            SatFeature::FaceA(q.face_a.0 as u32)
+        } else if q.face_b.1 == best {
+            SatFeature::FaceB(q.face_b.0 as u32)
+        } else {
+            SatFeature::EdgePair(q.edges.0 as u32, q.edges.1 as u32)
+        };
+        cache.separation = best;
+        return None;
+    }
+    let slop = 0.0025_f64.min(0.01 * a.bounding_radius().min(b.bounding_radius()));
+    let mut feature = if q.face_b.1 > q.face_a.1 {
+        SatFeature::FaceB(q.face_b.0 as u32)
+    } else {
+        SatFeature::FaceA(q.face_a.0 as u32)
+    };
+    let face_sep = q.face_a.1.max(q.face_b.1);
+    if q.edges.2 > face_sep + EDGE_REL_TOLERANCE * face_sep.abs() + slop {
+        feature = SatFeature::EdgePair(q.edges.0 as u32, q.edges.1 as u32);
+    }
+    // Hysteresis: keep last step's face while it stays within tolerance of the best axis.
+    if let (Some(s), SatFeature::FaceA(_) | SatFeature::FaceB(_)) = (cached, cache.feature) {
+        if s >= best - (KEEP_REL_TOLERANCE * best.abs() + slop) {
+            feature = cache.feature;
+        }
+    }
+    let manifold = match feature {
+        SatFeature::FaceA(f) => face_contact(a, pose_a, b, pose_b, f as usize, false, margin),
+        SatFeature::FaceB(f) => face_contact(b, pose_b, a, pose_a, f as usize, true, margin),
+        _ => None,
+    };
+    let manifold = match manifold {
+        Some(m) => Some(m),
+        // No face points survived clipping (a corner just past the rim): use the edge axis.
+        None if q.edges.2 > f64::NEG_INFINITY => {
+            feature = SatFeature::EdgePair(q.edges.0 as u32, q.edges.1 as u32);
+            Some(edge_contact(&frames, pose_a, pose_b, q.edges.0, q.edges.1, q.edges.3))
+        }
+        None => None,
+    };
+    cache.feature = feature;
+    cache.separation = match feature {
+        SatFeature::FaceA(_) => q.face_a.1,
+        SatFeature::FaceB(_) => q.face_b.1,
+        _ => q.edges.2,
+    };
+    manifold.filter(|m| m.min_separation() <= margin)
+}
+
+/// Face contact with `reference`'s face `ref_face` as the reference face. `reference_is_b` says the
+/// roles are swapped, so the manifold normal must be flipped to point from A to B.
+fn face_contact(
+    reference: &Polytope,
+    ref_pose: &Transform,
+    incident: &Polytope,
+    inc_pose: &Transform,
+    ref_face: usize,
+    reference_is_b: bool,
+    margin: f64,
+) -> Option<Manifold> {
+    let inc_in_ref = ref_pose.inverse().mul_transform(inc_pose);
+    let n_ref = reference.face_normal(ref_face);
+    // The incident face is the one most anti-parallel to the reference normal.
+    let inc_face = incident.best_face(-(inc_in_ref.rotation.inverse() * n_ref));
+    let ref_loop: Vec<DVec3> =
+        reference.face_vertices(ref_face).iter().map(|&v| reference.vertex(v as usize)).collect();
+    let inc_poly: Vec<DVec3> = incident
+        .face_vertices(inc_face)
+        .iter()
+        .map(|&v| inc_in_ref.transform_point(incident.vertex(v as usize)))
+        .collect();
+    let clipped = clip_to_face(&ref_loop, n_ref, &inc_poly, margin);
+    if clipped.is_empty() {
+        return None;
+    }
+    let normal_ref_world = ref_pose.rotation * n_ref;
+    let normal_world = if reference_is_b { -normal_ref_world } else { normal_ref_world };
+    let (pose_a, pose_b) = if reference_is_b { (inc_pose, ref_pose) } else { (ref_pose, inc_pose) };
+    let face_bits = (u32::from(reference_is_b) << 30)
+        | ((ref_face as u32 & 0x7F) << 23)
+        | ((inc_face as u32 & 0x7F) << 16);
+    let candidates: Vec<ContactPoint> = clipped
+        .iter()
+        .map(|c| {
+            let mid = ref_pose.transform_point(c.point - n_ref * (0.5 * c.separation));
+            ContactPoint::new(pose_a, pose_b, normal_world, mid, c.separation, face_bits | u32::from(c.tag))
+        })
+        .collect();
+    Manifold::from_candidates(normal_world, &candidates)
+}
+
+/// Edge–edge contact: one point midway between the closest points of the two edges.
+fn edge_contact(
+    frames: &Frames,
+    pose_a: &Transform,
+    pose_b: &Transform,
+    ea: usize,
+    eb: usize,
+    n_in_a: DVec3,
+) -> Manifold {
+    let edge_a = frames.a.edges()[ea];
+    let edge_b = frames.b.edges()[eb];
+    let (pa, qa) =
+        (frames.a.vertex(edge_a.vertices[0] as usize), frames.a.vertex(edge_a.vertices[1] as usize));
+    let (pb, qb) = (frames.verts_b[edge_b.vertices[0] as usize], frames.verts_b[edge_b.vertices[1] as usize]);
+    let (s, t) = closest_segment_segment(pa, qa, pb, qb);
+    let ca = pa + (qa - pa) * s;
+    let cb = pb + (qb - pb) * t;
+    let normal_world = pose_a.rotation * n_in_a;
+    let mid = pose_a.transform_point(0.5 * (ca + cb));
+    let id = 0x8000_0000 | ((ea as u32 & 0x7FFF) << 15) | (eb as u32 & 0x7FFF);
+    let mut m = Manifold::new(normal_world);
+    m.push(ContactPoint::new(pose_a, pose_b, normal_world, mid, n_in_a.dot(cb - ca), id));
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::DQuat;
+
+    #[test]
+    fn minkowski_face_arcs() {
+        let s = 3f64.sqrt();
+        // Arc from +X to +Z against an arc crossing y = 0 at (1, 0, 1)/√2: they cross.
+        assert!(is_minkowski_face(
+            DVec3::X,
+            DVec3::Z,
+            DVec3::new(1.0, -1.0, 1.0) / s,
+            DVec3::new(1.0, 1.0, 1.0) / s
+        ));
+        // The antipodal arc does not.
+        assert!(!is_minkowski_face(
+            DVec3::X,
+            DVec3::Z,
+            DVec3::new(-1.0, -1.0, -1.0) / s,
+            DVec3::new(-1.0, 1.0, -1.0) / s
+        ));
+    }
+
+    #[test]
+    fn resting_box_uses_the_ground_face() {
+        let ground = Polytope::Cuboid { half_extents: DVec3::new(10.0, 10.0, 1.0) };
+        let cube = Polytope::Cuboid { half_extents: DVec3::splat(0.5) };
+        let pose_g = Transform::IDENTITY;
+        let pose_c = Transform::new(DVec3::new(0.3, -0.2, 1.49), DQuat::from_rotation_z(0.2));
+        let mut cache = SatCache::default();
+        let m = collide_polytopes(&ground, &pose_g, &cube, &pose_c, 0.02, &mut cache).unwrap();
+        assert_eq!(m.len(), 4);
+        assert!((m.normal_world - DVec3::Z).length() < 1e-12);
+        for p in m.points() {
+            assert!((p.separation + 0.01).abs() < 1e-12);
+        }
+        assert!(matches!(cache.feature, SatFeature::FaceA(_)));
+    }
+}
