@@ -290,7 +290,7 @@ impl Checker<'_> {
             return Err(self.error(
                 q.span(),
                 format!(
-                    "{at}{key} must be a unit quaternion [x, y, z, w] (length within {UNIT_QUATERNION_TOLERANCE} of 1), got {shown} of length {length}"
+                    "{at}{key} must be a unit quaternion [x, y, z, w] (length within {UNIT_QUATERNION_TOLERANCE:e} of 1), got {shown} of length {length}"
                 ),
             ));
         }

@@ -132,7 +132,8 @@ impl Scene {
 /// key), as `file:line: body "name": key.path: message`.
 fn serde_error(text: &str, path: &Path, error: &serde_path_to_error::Error<toml::de::Error>) -> IoError {
     let inner = error.inner();
-    let message = inner.message().trim_end().to_string();
+    // serde says "f64"; a person editing a TOML file thinks "number".
+    let message = inner.message().trim_end().replace("expected f64", "expected a number");
     // `Spanned` shows up in the path as a private wrapper key; it is not something the user wrote.
     let mut segments: Vec<&Segment> = error
         .path()
