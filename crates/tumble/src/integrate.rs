@@ -13,7 +13,8 @@
 //! explicit update (ω = I⁻¹L, rotate by |ω| h about ω, I⁻¹ from the old orientation) is first order
 //! and lets energy drift; `docs/free-rotation.md` derives both and compares them.
 //!
-//! Torque enters as a kick on the world momentum before the free flow: `L += τ h`.
+//! Torque enters as two half kicks on the world momentum around the free flow: `L += τ h/2`, flow,
+//! `L += τ h/2`.
 
 use crate::body::{Body, BodyKind};
 use crate::math::{DQuat, DVec3};
@@ -46,18 +47,36 @@ fn rotate_about_principal_axis(
 }
 
 /// Advances a free rigid rotation by `h` with the symmetric splitting. `rotation` maps the principal
-/// frame to the world; `l_world` is the angular momentum about the centre of mass (unchanged by the
-/// flow). Returns the new principal-frame rotation.
-pub fn free_rotation_step(rotation: DQuat, l_world: DVec3, inertia_principal: DVec3, h: f64) -> DQuat {
-    let mut q = rotation;
-    let mut l = rotation.inverse() * l_world;
+/// frame to the world, `l_principal` is the angular momentum about the centre of mass in principal
+/// axes. Returns both advanced; the world momentum `rotation * l_principal` is unchanged.
+pub fn free_rotation_flow(
+    rotation: DQuat,
+    l_principal: DVec3,
+    inertia_principal: DVec3,
+    h: f64,
+) -> (DQuat, DVec3) {
+    let (mut q, mut l) = (rotation, l_principal);
     let half = 0.5 * h;
     rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 0, half);
     rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 1, half);
     rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 2, h);
     rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 1, half);
     rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 0, half);
-    q.normalize()
+    (q.normalize(), l)
+}
+
+/// `free_rotation_flow` for a world-frame momentum `l_world`; returns the new rotation.
+pub fn free_rotation_step(rotation: DQuat, l_world: DVec3, inertia_principal: DVec3, h: f64) -> DQuat {
+    free_rotation_flow(rotation, rotation.inverse() * l_world, inertia_principal, h).0
+}
+
+/// The lecture's explicit update (`RigidBody::Update`), kept as a reference to compare against:
+/// `ω = I⁻¹ L` with the world inertia of the *current* orientation, then one rotation by `|ω| h`
+/// about `ω`. It is first order and not symplectic: energy drifts and the intermediate-axis flip
+/// period comes out wrong. The engine does not use it.
+pub fn explicit_rotation_step(rotation: DQuat, l_world: DVec3, inertia_principal: DVec3, h: f64) -> DQuat {
+    let w_world = rotation * ((rotation.inverse() * l_world) / inertia_principal);
+    rotate_by_angular_velocity(rotation, w_world, h)
 }
 
 /// Rotates `rotation` by a constant world angular velocity for time `h` (exact: one rotation by
@@ -92,15 +111,25 @@ fn integrate_dynamic(body: &mut Body, gravity: DVec3, h: f64) {
     body.state.linear_velocity = v;
     body.state.com_world += h * v;
 
-    // Rotation: torque kick on the world momentum, then the exact-flow splitting.
+    // Rotation: the exact-flow splitting on the principal-frame momentum. Working in principal
+    // axes throughout saves two rotations of L per step, and with them round-off in L.
     let q_principal = body.state.rotation * body.principal_rotation_local;
     let inertia = body.inertia_principal;
-    let w_principal = q_principal.inverse() * body.state.angular_velocity;
-    let mut l_world = q_principal * (inertia * w_principal) + h * body.torque_world;
-    l_world /= 1.0 + h * body.angular_damping;
-    let q_principal = free_rotation_step(q_principal, l_world, inertia, h);
+    let mut l_principal = inertia * (q_principal.inverse() * body.state.angular_velocity);
+    // The torque kick is split in two halves around the free flow (kick–flow–kick), which keeps
+    // the update second order for a constant torque; the total change is still exactly τ h.
+    let half_kick_world = 0.5 * h * body.torque_world;
+    let torqued = half_kick_world != DVec3::ZERO;
+    if torqued {
+        l_principal += q_principal.inverse() * half_kick_world;
+    }
+    l_principal /= 1.0 + h * body.angular_damping;
+    let (q_principal, mut l_principal) = free_rotation_flow(q_principal, l_principal, inertia, h);
+    if torqued {
+        l_principal += q_principal.inverse() * half_kick_world;
+    }
     body.state.rotation = (q_principal * body.principal_rotation_local.inverse()).normalize();
-    body.state.angular_velocity = q_principal * ((q_principal.inverse() * l_world) / inertia);
+    body.state.angular_velocity = q_principal * (l_principal / inertia);
 }
 
 #[cfg(test)]

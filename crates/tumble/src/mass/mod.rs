@@ -4,11 +4,12 @@
 //! Frames: every quantity is expressed in the frame the shape is defined in (the body frame for a
 //! body's shape). The inertia tensor is always taken about the centre of mass.
 
-use crate::math::{DMat3, DVec3, Transform};
+use crate::math::{DMat3, DVec3};
 
 mod eigen;
 mod mesh;
 mod primitives;
+mod volume_integrals;
 
 pub use eigen::symmetric_eigen;
 pub use mesh::validate_closed_mesh;
