@@ -50,10 +50,10 @@ enum Command {
         #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
         every: u64,
         /// Simulated time in seconds, overriding the scene's `world.duration`.
-        #[arg(long, value_name = "S")]
+        #[arg(long, value_name = "S", allow_negative_numbers = true)]
         duration: Option<f64>,
         /// Time step in seconds, overriding the scene's `world.dt`.
-        #[arg(long, value_name = "S")]
+        #[arg(long, value_name = "S", allow_negative_numbers = true)]
         dt: Option<f64>,
     },
     /// Print the mass properties of a closed mesh (OBJ or STL) as JSON.
@@ -61,7 +61,7 @@ enum Command {
         /// The mesh file (.obj or .stl).
         mesh: PathBuf,
         /// Density in kg/m³.
-        #[arg(long, value_name = "D", default_value_t = 1000.0)]
+        #[arg(long, value_name = "D", default_value_t = 1000.0, allow_negative_numbers = true)]
         density: f64,
     },
 }

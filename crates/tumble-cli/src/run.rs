@@ -63,7 +63,7 @@ impl Summary {
             self.bodies,
             self.steps,
             self.dt,
-            self.simulated_time,
+            short(self.simulated_time),
             wall,
             self.energy_drift,
             rel(self.energy_relative),
@@ -75,6 +75,17 @@ impl Summary {
             self.every,
             if self.every == 1 { "" } else { "s" },
         )
+    }
+}
+
+/// `x` to 9 decimals without trailing zeros: the accumulated time 19.999999999999186 reads as 20.
+fn short(x: f64) -> String {
+    let s = format!("{x:.9}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.into()
     }
 }
 
@@ -97,12 +108,8 @@ pub fn run_scene_file(
         let stem = path.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
         PathBuf::from("out").join(format!("{stem}.csv"))
     });
-    let options = RunOptions {
-        out,
-        every,
-        duration: duration.unwrap_or(scene.duration),
-        dt: dt.unwrap_or(scene.dt),
-    };
+    let options =
+        RunOptions { out, every, duration: duration.unwrap_or(scene.duration), dt: dt.unwrap_or(scene.dt) };
     let summary = run_scene(&scene, &options).map_err(|e| e.to_string())?;
     Ok(summary.render(&path.display().to_string()))
 }

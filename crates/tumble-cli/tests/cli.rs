@@ -17,7 +17,8 @@ fn text(bytes: &[u8]) -> String {
 
 /// The number after `label:` in the summary.
 fn summary_value(stdout: &str, label: &str) -> f64 {
-    let line = stdout.lines().find(|l| l.starts_with(label)).unwrap_or_else(|| panic!("no `{label}` in:\n{stdout}"));
+    let line =
+        stdout.lines().find(|l| l.starts_with(label)).unwrap_or_else(|| panic!("no `{label}` in:\n{stdout}"));
     line[label.len()..].split_whitespace().next().unwrap().parse().unwrap()
 }
 
@@ -49,10 +50,15 @@ fn mass_prints_json_whose_axes_diagonalise_the_inertia() {
     for i in 0..3 {
         for j in 0..3 {
             let rebuilt: f64 = (0..3).map(|k| r[i][k] * m[k] * r[j][k]).sum();
-            assert!((rebuilt - inertia[i][j]).abs() <= 1e-10 * scale, "({i},{j}): {rebuilt} vs {}", inertia[i][j]);
+            assert!(
+                (rebuilt - inertia[i][j]).abs() <= 1e-10 * scale,
+                "({i},{j}): {rebuilt} vs {}",
+                inertia[i][j]
+            );
         }
     }
-    let det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0])
+    let det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1])
+        - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0])
         + r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
     assert!((det - 1.0).abs() < 1e-12, "det R = {det}");
 }
@@ -67,7 +73,11 @@ fn mass_density_scales_mass_and_bad_input_is_an_error() {
 
     let out = tumble(&["mass", handle.to_str().unwrap(), "--density", "-1"], dir.path());
     assert!(!out.status.success());
-    assert!(text(&out.stderr).starts_with("error: --density must be finite and > 0"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).starts_with("error: --density must be finite and > 0"),
+        "{}",
+        text(&out.stderr)
+    );
 
     let out = tumble(&["mass", "missing.obj"], dir.path());
     assert!(!out.status.success());
@@ -106,13 +116,27 @@ fn run_writes_every_nth_step_and_reports_conservation() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scenes().join("projectile.toml");
     let out = tumble(
-        &["run", scene.to_str().unwrap(), "--out", "p.csv", "--every", "10", "--duration", "1", "--dt", "0.01"],
+        &[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            "p.csv",
+            "--every",
+            "10",
+            "--duration",
+            "1",
+            "--dt",
+            "0.01",
+        ],
         dir.path(),
     );
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     assert_eq!(summary_value(&stdout, "steps:"), 100.0);
-    assert!(summary_value(&stdout, "energy drift:") < 1e-6, "{stdout}");
+    // Not asserted tightly: the core's linear update is first order (symplectic Euler), so under
+    // gravity its energy error grows like m g² dt t / 2 (about 1% here). Rotation is what the
+    // demo checks.
+    assert!(summary_value(&stdout, "energy drift:") < 0.05, "{stdout}");
     assert!(summary_value(&stdout, "angular momentum drift:") < 1e-9, "{stdout}");
     assert!(summary_value(&stdout, "linear momentum drift:") < 1e-9, "{stdout}");
     let recording = tumble_io::Recording::read(dir.path().join("p.csv")).unwrap();
@@ -131,7 +155,7 @@ fn demo_writes_out_demo_csv_with_exact_header_and_small_energy_drift() {
     assert_eq!(summary_value(&stdout, "steps:"), 4800.0);
     assert_eq!(summary_value(&stdout, "simulated time:"), 20.0);
     let energy = summary_value(&stdout, "energy drift:");
-    assert!(energy < 1e-3, "energy drift {energy}:\n{stdout}");
+    assert!(energy < 1e-4, "energy drift {energy}:\n{stdout}");
     assert!(summary_value(&stdout, "angular momentum drift:") < 1e-9, "{stdout}");
     assert!(stdout.contains("out/demo.csv"), "{stdout}");
     assert_eq!(csv.lines().count(), 1 + 4801);
@@ -145,7 +169,7 @@ fn demo_writes_out_demo_csv_with_exact_header_and_small_energy_drift() {
         .windows(2)
         .filter(|w| (w[0] > 0.0) != (w[1] > 0.0))
         .count();
-    assert!(flips >= 2, "expected the handle to flip at least twice in 20 s, saw {flips} sign changes");
+    assert!(flips >= 3, "expected the handle to flip at least three times in 20 s, saw {flips} sign changes");
 }
 
 #[test]

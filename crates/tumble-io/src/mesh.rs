@@ -36,6 +36,9 @@ pub fn load_obj(path: &Path) -> Result<TriMesh, IoError> {
 
 /// Parses OBJ text; `path` is only used in messages.
 pub fn obj_from_str(text: &str, path: &Path) -> Result<TriMesh, IoError> {
+    // `..Default::default()` covers the fields that tobj's optional features add, in case another
+    // crate in the build turns them on.
+    #[allow(clippy::needless_update)]
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,

@@ -97,7 +97,7 @@ impl<W: Write> RecordingWriter<W> {
     /// Call after each step: writes a frame when the world's step count is a multiple of
     /// `every`. Returns whether it wrote.
     pub fn record_step(&mut self, world: &World) -> Result<bool, IoError> {
-        if world.step_count() % self.every == 0 {
+        if world.step_count().is_multiple_of(self.every) {
             self.write_frame(world)?;
             return Ok(true);
         }

@@ -17,8 +17,10 @@ fn integer_handle_obj() -> String {
     text.lines()
         .map(|line| match line.strip_prefix("v ") {
             Some(coords) => {
-                let scaled: Vec<String> =
-                    coords.split_whitespace().map(|c| format!("{}", (c.parse::<f64>().unwrap() * 20.0).round())).collect();
+                let scaled: Vec<String> = coords
+                    .split_whitespace()
+                    .map(|c| format!("{}", (c.parse::<f64>().unwrap() * 20.0).round()))
+                    .collect();
                 format!("v {}\n", scaled.join(" "))
             }
             None => format!("{line}\n"),
@@ -65,7 +67,12 @@ fn mass(mesh: &TriMesh) -> MassProperties {
 
 fn assert_same_solid(a: &MassProperties, b: &MassProperties, tolerance: f64, what: &str) {
     let scale = a.inertia.to_cols_array().iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    assert!((a.volume - b.volume).abs() <= tolerance * a.volume, "{what}: volume {} vs {}", a.volume, b.volume);
+    assert!(
+        (a.volume - b.volume).abs() <= tolerance * a.volume,
+        "{what}: volume {} vs {}",
+        a.volume,
+        b.volume
+    );
     assert!((a.mass - b.mass).abs() <= tolerance * a.mass, "{what}: mass");
     assert!((a.center_of_mass - b.center_of_mass).length() <= tolerance * a.volume.cbrt(), "{what}: com");
     let worst = (a.inertia - b.inertia).to_cols_array().iter().fold(0.0_f64, |m, x| m.max(x.abs()));
@@ -118,7 +125,8 @@ fn obj_split_into_groups_is_welded_back_together() {
 fn open_mesh_is_an_error_naming_the_file() {
     let dir = tempfile::tempdir().unwrap();
     // A tetrahedron with one face missing.
-    let path = write(dir.path(), "open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n");
+    let path =
+        write(dir.path(), "open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n");
     let error = load_mesh(&path).unwrap_err();
     let message = error.to_string();
     assert!(matches!(error, IoError::Mesh { .. }), "{message}");
@@ -129,7 +137,11 @@ fn open_mesh_is_an_error_naming_the_file() {
 #[test]
 fn inside_out_mesh_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
-    let path = write(dir.path(), "inverted.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 2 4 3\nf 1 3 4\n");
+    let path = write(
+        dir.path(),
+        "inverted.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 2 4 3\nf 1 3 4\n",
+    );
     let message = load_mesh(&path).unwrap_err().to_string();
     assert!(message.contains("inverted.obj") && message.contains("inside out"), "{message}");
 }
@@ -140,8 +152,10 @@ fn unreadable_and_unknown_files_are_errors() {
     assert!(message.starts_with("no/such/mesh.obj: "), "{message}");
     let message = load_mesh(Path::new("mesh.ply")).unwrap_err().to_string();
     assert!(message.contains("mesh.ply") && message.contains("unsupported"), "{message}");
-    let message = tumble_io::obj_from_str("v 0 0 0\nf 1 x 3\n", Path::new("bad.obj")).unwrap_err().to_string();
+    let message =
+        tumble_io::obj_from_str("v 0 0 0\nf 1 x 3\n", Path::new("bad.obj")).unwrap_err().to_string();
     assert!(message.starts_with("bad.obj: "), "{message}");
-    let message = tumble_io::stl_from_bytes(b"solid x\nfacet oops\n", Path::new("bad.stl")).unwrap_err().to_string();
+    let message =
+        tumble_io::stl_from_bytes(b"solid x\nfacet oops\n", Path::new("bad.stl")).unwrap_err().to_string();
     assert!(message.starts_with("bad.stl: "), "{message}");
 }

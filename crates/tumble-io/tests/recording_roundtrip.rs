@@ -35,7 +35,14 @@ fn write_then_read_back_is_bit_for_bit() {
     let snapshot = |w: &World| -> Vec<(f64, String, DVec3, DQuat, DVec3, DVec3)> {
         w.bodies()
             .map(|(_, b)| {
-                (w.time(), b.name().to_string(), b.position(), b.orientation(), b.linear_velocity(), b.angular_velocity())
+                (
+                    w.time(),
+                    b.name().to_string(),
+                    b.position(),
+                    b.orientation(),
+                    b.linear_velocity(),
+                    b.angular_velocity(),
+                )
             })
             .collect()
     };
@@ -60,7 +67,8 @@ fn write_then_read_back_is_bit_for_bit() {
         for (sample, (t, name, p, q, v, w)) in frame.bodies.iter().zip(bodies) {
             assert_eq!(frame.t.to_bits(), t.to_bits());
             assert_eq!(&sample.name, name);
-            for (a, b) in [(sample.position, *p), (sample.linear_velocity, *v), (sample.angular_velocity, *w)] {
+            for (a, b) in [(sample.position, *p), (sample.linear_velocity, *v), (sample.angular_velocity, *w)]
+            {
                 assert_eq!(a.to_array().map(f64::to_bits), b.to_array().map(f64::to_bits));
             }
             assert_eq!(sample.orientation.to_array().map(f64::to_bits), q.to_array().map(f64::to_bits));
@@ -91,7 +99,8 @@ fn file_recording_has_the_exact_header_and_whole_frames() {
 fn bad_recordings_are_errors_with_a_line() {
     let bad_header = Recording::from_reader("t,body,x\n".as_bytes(), "r.csv").unwrap_err().to_string();
     assert!(bad_header.starts_with("r.csv:1: not a recording"), "{bad_header}");
-    let text = format!("{RECORDING_HEADER}\n0.0,a,1,2,3,0,0,0,1,0,0,0,0,0,0\n0.0,b,1,2,oops,0,0,0,1,0,0,0,0,0,0\n");
+    let text =
+        format!("{RECORDING_HEADER}\n0.0,a,1,2,3,0,0,0,1,0,0,0,0,0,0\n0.0,b,1,2,oops,0,0,0,1,0,0,0,0,0,0\n");
     let bad_number = Recording::from_reader(text.as_bytes(), "r.csv").unwrap_err().to_string();
     assert!(bad_number.starts_with("r.csv:3: column pz"), "{bad_number}");
     let text = format!("{RECORDING_HEADER}\n0.0,a,1,2,3\n");

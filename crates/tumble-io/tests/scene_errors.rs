@@ -127,7 +127,11 @@ fn missing_radius_names_the_key() {
 #[test]
 fn missing_shape_or_name_is_an_error() {
     expect_error("[[body]]\nname = \"ghost\"\n", 1, &["body \"ghost\"", "missing field `shape`"]);
-    expect_error("\n[[body]]\nshape = { type = \"sphere\", radius = 1.0 }\n", 2, &["body #1", "missing field `name`"]);
+    expect_error(
+        "\n[[body]]\nshape = { type = \"sphere\", radius = 1.0 }\n",
+        2,
+        &["body #1", "missing field `name`"],
+    );
 }
 
 #[test]
@@ -171,7 +175,11 @@ fn non_unit_or_zero_quaternion_is_an_error() {
         4,
         &["body \"q\": orientation must be a unit quaternion", "length 1.001"],
     );
-    expect_error(&format!("{body}orientation = [0.0, 0.0, 0.0, 0.0]\n"), 4, &["orientation is the zero quaternion"]);
+    expect_error(
+        &format!("{body}orientation = [0.0, 0.0, 0.0, 0.0]\n"),
+        4,
+        &["orientation is the zero quaternion"],
+    );
     expect_error(&format!("{body}orientation = [nan, 0.0, 0.0, 1.0]\n"), 4, &["orientation must be finite"]);
     // Rounding in a hand-written file is accepted (and normalised).
     let scene = Scene::from_str(&format!("{body}orientation = [0.0, 0.0, 0.6, 0.8000001]\n"), FILE).unwrap();

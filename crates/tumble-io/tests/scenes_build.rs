@@ -70,9 +70,11 @@ angular_velocity = [0.0, 0.0, 3.0]
 #[test]
 fn open_mesh_file_in_a_scene_names_scene_line_key_and_mesh() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("open.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n").unwrap();
+    std::fs::write(dir.path().join("open.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n")
+        .unwrap();
     let scene = dir.path().join("scene.toml");
-    std::fs::write(&scene, "[[body]]\nname = \"lid\"\n\nshape = { type = \"mesh\", file = \"open.obj\" }\n").unwrap();
+    std::fs::write(&scene, "[[body]]\nname = \"lid\"\n\nshape = { type = \"mesh\", file = \"open.obj\" }\n")
+        .unwrap();
     let message = Scene::from_file(&scene).unwrap_err().to_string();
     assert!(message.starts_with(&format!("{}:4: body \"lid\": shape.file: ", scene.display())), "{message}");
     assert!(message.contains("open.obj") && message.contains("open"), "{message}");
