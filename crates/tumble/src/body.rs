@@ -8,6 +8,7 @@
 //!   `principal_rotation_local` maps it into the body frame;
 //! - `linear_velocity` is the velocity of the centre of mass, `angular_velocity` is in the world frame.
 
+use crate::dynamics::material::Material;
 use crate::mass::{MassProperties, PrincipalFrame};
 use crate::math::{hat, DMat3, DQuat, DVec3, Transform};
 use crate::shape::Shape;
@@ -62,6 +63,10 @@ pub struct BodyDef {
     pub angular_damping: f64,
     /// Multiplies the world's gravity for this body. Default 1.
     pub gravity_scale: f64,
+    /// May this body fall asleep when it comes to rest? Default true.
+    pub allow_sleep: bool,
+    /// The surface of the body's shape: friction, restitution, rolling and torsional friction.
+    pub material: Material,
 }
 
 impl Default for BodyDef {
@@ -80,6 +85,8 @@ impl Default for BodyDef {
             linear_damping: 0.0,
             angular_damping: 0.0,
             gravity_scale: 1.0,
+            allow_sleep: true,
+            material: Material::default(),
         }
     }
 }
@@ -120,6 +127,12 @@ pub struct Body {
     pub(crate) linear_damping: f64,
     pub(crate) angular_damping: f64,
     pub(crate) gravity_scale: f64,
+    pub(crate) allow_sleep: bool,
+    pub(crate) material: Material,
+    /// How long the body has been slower than the sleep thresholds, s.
+    pub(crate) sleep_time: f64,
+    /// `Some(island)` while asleep: the island (named by its lowest body slot) it sleeps with.
+    pub(crate) sleeping_island: Option<u32>,
 }
 
 impl Body {
@@ -151,6 +164,10 @@ impl Body {
             linear_damping: def.linear_damping,
             angular_damping: def.angular_damping,
             gravity_scale: def.gravity_scale,
+            allow_sleep: def.allow_sleep,
+            material: def.material,
+            sleep_time: 0.0,
+            sleeping_island: None,
         }
     }
 
@@ -262,6 +279,16 @@ impl Body {
 
     pub fn gravity_scale(&self) -> f64 {
         self.gravity_scale
+    }
+
+    /// The surface material of the body's shape.
+    pub fn material(&self) -> &Material {
+        &self.material
+    }
+
+    /// False while the body sleeps (it is then not simulated until something wakes it).
+    pub fn is_awake(&self) -> bool {
+        self.sleeping_island.is_none()
     }
 
     /// Velocity of the material point now at `point_world`: `v + ω × r`, r from the centre of mass.

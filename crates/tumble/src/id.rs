@@ -61,11 +61,23 @@ typed_id!(
     BodyId
 );
 
+typed_id!(
+    /// Names a joint in a `World`.
+    JointId
+);
+
 /// An untyped id, used by the pool; the typed ids convert to and from it.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub struct RawId {
     index: u32,
     generation: u32,
+}
+
+impl RawId {
+    /// The slot index.
+    pub fn index(self) -> usize {
+        self.index as usize
+    }
 }
 
 struct Slot<T> {
@@ -145,6 +157,11 @@ impl<T> SlotPool<T> {
             return None;
         }
         slot.value.as_mut()
+    }
+
+    /// The live object in slot `index`, whatever its generation.
+    pub fn iter_slot(&self, index: usize) -> Option<&T> {
+        self.slots.get(index).and_then(|s| s.value.as_ref())
     }
 
     /// Live objects with their ids, in slot order.

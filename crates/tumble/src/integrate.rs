@@ -1,6 +1,5 @@
-//! Free motion: velocities from forces, and the rotation update.
-//!
-//! Translation is semi-implicit (symplectic) Euler: `v += h (g + F/m)`, then `x += h v`.
+//! The rotation update of free motion, used by the solver's position stage
+//! (`dynamics/solver_body.rs`, which also does translation: semi-implicit Euler).
 //!
 //! Rotation is the splitting method of Dullweber, Leimkuhler and McLachlan (1997). The free rigid
 //! body's kinetic energy `H = Σ Lᵢ² / (2 Iᵢ)` (body-frame angular momentum `L`, principal moments
@@ -16,7 +15,6 @@
 //! Torque enters as two half kicks on the world momentum around the free flow: `L += τ h/2`, flow,
 //! `L += τ h/2`.
 
-use crate::body::{Body, BodyKind};
 use crate::math::{DQuat, DVec3};
 
 /// Rotates `rotation` (principal frame → world) and the body-frame momentum `l_principal` by the
@@ -87,49 +85,6 @@ pub fn rotate_by_angular_velocity(rotation: DQuat, angular_velocity: DVec3, h: f
         return rotation;
     }
     (DQuat::from_axis_angle(angular_velocity.normalize(), angle) * rotation).normalize()
-}
-
-/// One free-motion step of `body` over `h` under `gravity` and the body's accumulated force and
-/// torque. Static bodies stay put; kinematic bodies move with their velocities.
-pub fn integrate_body(body: &mut Body, gravity: DVec3, h: f64) {
-    match body.kind {
-        BodyKind::Static => {}
-        BodyKind::Kinematic => {
-            let s = &mut body.state;
-            s.com_world += h * s.linear_velocity;
-            s.rotation = rotate_by_angular_velocity(s.rotation, s.angular_velocity, h);
-        }
-        BodyKind::Dynamic => integrate_dynamic(body, gravity, h),
-    }
-}
-
-fn integrate_dynamic(body: &mut Body, gravity: DVec3, h: f64) {
-    // Translation: semi-implicit Euler with implicit damping (unconditionally stable).
-    let acceleration = gravity * body.gravity_scale + body.force_world * body.inverse_mass;
-    let mut v = body.state.linear_velocity + h * acceleration;
-    v /= 1.0 + h * body.linear_damping;
-    body.state.linear_velocity = v;
-    body.state.com_world += h * v;
-
-    // Rotation: the exact-flow splitting on the principal-frame momentum. Working in principal
-    // axes throughout saves two rotations of L per step, and with them round-off in L.
-    let q_principal = body.state.rotation * body.principal_rotation_local;
-    let inertia = body.inertia_principal;
-    let mut l_principal = inertia * (q_principal.inverse() * body.state.angular_velocity);
-    // The torque kick is split in two halves around the free flow (kick–flow–kick), which keeps
-    // the update second order for a constant torque; the total change is still exactly τ h.
-    let half_kick_world = 0.5 * h * body.torque_world;
-    let torqued = half_kick_world != DVec3::ZERO;
-    if torqued {
-        l_principal += q_principal.inverse() * half_kick_world;
-    }
-    l_principal /= 1.0 + h * body.angular_damping;
-    let (q_principal, mut l_principal) = free_rotation_flow(q_principal, l_principal, inertia, h);
-    if torqued {
-        l_principal += q_principal.inverse() * half_kick_world;
-    }
-    body.state.rotation = (q_principal * body.principal_rotation_local.inverse()).normalize();
-    body.state.angular_velocity = q_principal * (l_principal / inertia);
 }
 
 #[cfg(test)]

@@ -6,6 +6,8 @@
 //! Conventions: f64, SI units, right-handed with **Z up**, quaternions as (x, y, z, w).
 
 pub mod body;
+pub mod collision;
+pub mod dynamics;
 pub mod id;
 pub mod integrate;
 pub mod mass;
@@ -15,7 +17,10 @@ mod step;
 pub mod world;
 
 pub use body::{Body, BodyDef, BodyKind, BodyState};
-pub use id::BodyId;
+pub use dynamics::joint::{BallJoint, Joint, JointDef, JointKind};
+pub use dynamics::solver::SolverSettings;
+pub use dynamics::{Material, SleepSettings};
+pub use id::{BodyId, JointId};
 pub use mass::{MassError, MassProperties, PrincipalFrame};
 pub use math::{DMat3, DQuat, DVec3, Transform};
 pub use shape::{Capsule, Compound, CompoundChild, Cone, Cuboid, Cylinder, Shape, Sphere, TriMesh};

@@ -1,11 +1,9 @@
 //! `World::step`: the phases of one time step, in order. This file reads as the table of contents
 //! of the pipeline in DESIGN.md; each phase lives in its own module.
 //!
-//! Today the pipeline is free motion only: forces, gravity and the exact rotation update for every
-//! body, then accumulators are cleared. Collision and the constraint solver join as their modules
-//! land.
+//! Today the pipeline is: the soft-step solve (forces, gravity, joints, exact rotation update, in
+//! substeps), then accumulators are cleared. Collision joins as its modules land.
 
-use crate::integrate::integrate_body;
 use crate::math::DVec3;
 use crate::world::{World, WorldError};
 
@@ -15,12 +13,15 @@ impl World {
         if !dt.is_finite() || dt <= 0.0 {
             return Err(WorldError::InvalidTimeStep(dt));
         }
-        let gravity = self.gravity;
 
-        // Free motion: velocities from forces and gravity, then positions and rotations.
-        for (_, body) in self.bodies.iter_mut() {
-            integrate_body(body, gravity, dt);
-        }
+        // Wake sleeping islands that awake bodies are linked to.
+        self.wake_islands_touched_by_awake_bodies(&[]);
+
+        // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
+        self.solve(dt);
+
+        // Islands and sleep (dynamics/island.rs).
+        self.update_sleep(dt, &[]);
 
         // Forces and torques act for one step only.
         for (_, body) in self.bodies.iter_mut() {

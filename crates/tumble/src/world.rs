@@ -2,7 +2,11 @@
 //! `step.rs` holds `World::step`.
 
 use crate::body::{Body, BodyDef, BodyKind};
-use crate::id::{BodyId, SlotPool};
+use crate::dynamics::island::SleepSettings;
+use crate::dynamics::joint::{Joint, JointDef};
+use crate::dynamics::solver::SolverSettings;
+use crate::dynamics::solver_body::SolverBody;
+use crate::id::{BodyId, JointId, SlotPool};
 use crate::mass::{MassError, MassProperties};
 use crate::math::{is_finite_vec, DMat3, DVec3};
 
@@ -11,11 +15,19 @@ use crate::math::{is_finite_vec, DMat3, DVec3};
 pub struct WorldDef {
     /// Gravity, m/s². Default (0, 0, −9.81): Z is up.
     pub gravity: DVec3,
+    /// Substeps, constraint stiffness and the other solver settings.
+    pub solver: SolverSettings,
+    /// When resting bodies fall asleep.
+    pub sleep: SleepSettings,
 }
 
 impl Default for WorldDef {
     fn default() -> Self {
-        Self { gravity: DVec3::new(0.0, 0.0, -9.81) }
+        Self {
+            gravity: DVec3::new(0.0, 0.0, -9.81),
+            solver: SolverSettings::default(),
+            sleep: SleepSettings::default(),
+        }
     }
 }
 
@@ -36,11 +48,22 @@ pub enum WorldError {
     NotFinite { what: &'static str, value: String },
     #[error("time step must be finite and > 0, got {0}")]
     InvalidTimeStep(f64),
+    #[error("{0} does not name a joint in this world (removed, or from another world)")]
+    StaleJoint(JointId),
+    #[error("joint \"{joint}\": {message}")]
+    InvalidJoint { joint: String, message: String },
+    #[error("solver settings: {0}")]
+    InvalidSolverSettings(String),
 }
 
 /// A rigid-body world.
 pub struct World {
     pub(crate) bodies: SlotPool<Body>,
+    pub(crate) joints: SlotPool<Joint>,
+    pub(crate) solver_settings: SolverSettings,
+    pub(crate) sleep_settings: SleepSettings,
+    /// The solver's per-body working copies, kept between steps to reuse the allocation.
+    pub(crate) solver_bodies: Vec<SolverBody>,
     pub(crate) gravity: DVec3,
     pub(crate) time: f64,
     pub(crate) step_count: u64,
@@ -60,14 +83,49 @@ fn check_vec(what: &'static str, v: DVec3) -> Result<DVec3, WorldError> {
     }
 }
 
+fn check_solver_settings(s: &SolverSettings) -> Result<(), WorldError> {
+    let bad = |m: String| Err(WorldError::InvalidSolverSettings(m));
+    if s.substeps == 0 || s.substeps > 1000 {
+        return bad(format!("substeps must be between 1 and 1000, got {}", s.substeps));
+    }
+    for (what, v) in [
+        ("joint_hertz", s.joint_hertz),
+        ("joint_damping_ratio", s.joint_damping_ratio),
+        ("contact_hertz", s.contact_hertz),
+        ("contact_damping_ratio", s.contact_damping_ratio),
+        ("max_contact_push_velocity", s.max_contact_push_velocity),
+        ("restitution_threshold", s.restitution_threshold),
+    ] {
+        if !v.is_finite() || v < 0.0 {
+            return bad(format!("{what} must be finite and >= 0, got {v}"));
+        }
+    }
+    Ok(())
+}
+
 impl World {
     pub fn new(def: WorldDef) -> Result<Self, WorldError> {
+        check_solver_settings(&def.solver)?;
         Ok(Self {
             bodies: SlotPool::new(),
+            joints: SlotPool::new(),
+            solver_settings: def.solver,
+            sleep_settings: def.sleep,
+            solver_bodies: Vec::new(),
             gravity: check_vec("gravity", def.gravity)?,
             time: 0.0,
             step_count: 0,
         })
+    }
+
+    pub fn solver_settings(&self) -> &SolverSettings {
+        &self.solver_settings
+    }
+
+    pub fn set_solver_settings(&mut self, settings: SolverSettings) -> Result<(), WorldError> {
+        check_solver_settings(&settings)?;
+        self.solver_settings = settings;
+        Ok(())
     }
 
     pub fn gravity(&self) -> DVec3 {
@@ -117,6 +175,7 @@ impl World {
                 return Err(invalid(format!("{what} must be finite and >= 0, got {value}")));
             }
         }
+        def.material.validate().map_err(|m| invalid(format!("material: {m}")))?;
         if !def.gravity_scale.is_finite() {
             return Err(invalid(format!("gravity_scale must be finite, got {}", def.gravity_scale)));
         }
@@ -176,9 +235,81 @@ impl World {
         }
     }
 
-    /// Removes a body; its id (and any copy of it) becomes stale.
+    /// Removes a body and every joint attached to it; its id (and any copy of it) becomes stale.
     pub fn remove_body(&mut self, id: BodyId) -> Result<Body, WorldError> {
-        self.bodies.remove(id.into()).ok_or(WorldError::StaleBody(id))
+        let body = self.bodies.remove(id.into()).ok_or(WorldError::StaleBody(id))?;
+        let attached: Vec<_> = self
+            .joints
+            .iter()
+            .filter(|(_, j)| j.body_a == id || j.body_b == id)
+            .map(|(jid, _)| jid)
+            .collect();
+        for jid in attached {
+            if let Some(joint) = self.joints.remove(jid) {
+                let other = if joint.body_a == id { joint.body_b } else { joint.body_a };
+                let _ = self.wake_body(other);
+            }
+        }
+        Ok(body)
+    }
+
+    /// Adds a joint between two bodies. Checked in full first; on error nothing changes.
+    pub fn add_joint(&mut self, def: JointDef) -> Result<JointId, WorldError> {
+        let invalid = |message: String| WorldError::InvalidJoint { joint: def.name.clone(), message };
+        let a = self
+            .bodies
+            .get(def.body_a.into())
+            .ok_or_else(|| invalid(format!("body_a {} does not name a body in this world", def.body_a)))?;
+        let b = self
+            .bodies
+            .get(def.body_b.into())
+            .ok_or_else(|| invalid(format!("body_b {} does not name a body in this world", def.body_b)))?;
+        if def.body_a == def.body_b {
+            return Err(invalid("body_a and body_b are the same body".into()));
+        }
+        if !is_finite_vec(def.anchor_world) {
+            return Err(invalid(format!("anchor must be finite, got {}", def.anchor_world)));
+        }
+        let axis_len = def.axis_world.length();
+        if !axis_len.is_finite() || axis_len < 1e-9 {
+            return Err(invalid(format!("axis must be a finite non-zero vector, got {}", def.axis_world)));
+        }
+        if let Some(f) = def.break_force {
+            if !f.is_finite() || f <= 0.0 {
+                return Err(invalid(format!("break_force must be finite and > 0, got {f}")));
+            }
+        }
+        if a.kind != BodyKind::Dynamic && b.kind != BodyKind::Dynamic {
+            return Err(invalid("at least one of the two bodies must be dynamic".into()));
+        }
+        def.kind.validate().map_err(invalid)?;
+        let joint = Joint::new(&def, a, b);
+        let id = self.joints.insert(joint).into();
+        self.wake_body(def.body_a)?;
+        self.wake_body(def.body_b)?;
+        Ok(id)
+    }
+
+    /// Removes a joint; its id becomes stale.
+    pub fn remove_joint(&mut self, id: JointId) -> Result<Joint, WorldError> {
+        let joint = self.joints.remove(id.into()).ok_or(WorldError::StaleJoint(id))?;
+        // The bodies it held may now move: wake them (a removed body's id is simply stale).
+        let _ = self.wake_body(joint.body_a);
+        let _ = self.wake_body(joint.body_b);
+        Ok(joint)
+    }
+
+    pub fn joint(&self, id: JointId) -> Result<&Joint, WorldError> {
+        self.joints.get(id.into()).ok_or(WorldError::StaleJoint(id))
+    }
+
+    /// All joints with their ids, in a fixed (slot) order.
+    pub fn joints(&self) -> impl Iterator<Item = (JointId, &Joint)> {
+        self.joints.iter().map(|(id, j)| (id.into(), j))
+    }
+
+    pub fn joint_count(&self) -> usize {
+        self.joints.len()
     }
 
     /// Number of bodies.
@@ -218,6 +349,7 @@ impl World {
         if !len.is_finite() || len < 1e-9 {
             return Err(WorldError::NotFinite { what: "orientation", value: format!("{orientation}") });
         }
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         let rotation = orientation.normalize();
         body.state.rotation = rotation;
@@ -228,6 +360,7 @@ impl World {
     /// Sets the velocity of the centre of mass. Ignored for static bodies (they never move).
     pub fn set_linear_velocity(&mut self, id: BodyId, v: DVec3) -> Result<(), WorldError> {
         check_vec("linear velocity", v)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         if body.kind != BodyKind::Static {
             body.state.linear_velocity = v;
@@ -238,6 +371,7 @@ impl World {
     /// Sets the angular velocity (world frame). Ignored for static bodies.
     pub fn set_angular_velocity(&mut self, id: BodyId, w: DVec3) -> Result<(), WorldError> {
         check_vec("angular velocity", w)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         if body.kind != BodyKind::Static {
             body.state.angular_velocity = w;
@@ -255,6 +389,7 @@ impl World {
     ) -> Result<(), WorldError> {
         check_vec("force", force)?;
         check_vec("point", point_world)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         body.force_world += force;
         body.torque_world += (point_world - body.state.com_world).cross(force);
@@ -264,6 +399,7 @@ impl World {
     /// Adds force `f` at the centre of mass (no torque).
     pub fn apply_force(&mut self, id: BodyId, force: DVec3) -> Result<(), WorldError> {
         check_vec("force", force)?;
+        self.wake_body(id)?;
         self.body_mut(id)?.force_world += force;
         Ok(())
     }
@@ -271,6 +407,7 @@ impl World {
     /// Adds a torque about the centre of mass (world frame).
     pub fn apply_torque(&mut self, id: BodyId, torque: DVec3) -> Result<(), WorldError> {
         check_vec("torque", torque)?;
+        self.wake_body(id)?;
         self.body_mut(id)?.torque_world += torque;
         Ok(())
     }
@@ -285,6 +422,7 @@ impl World {
     ) -> Result<(), WorldError> {
         check_vec("impulse", impulse)?;
         check_vec("point", point_world)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         if body.kind != BodyKind::Dynamic {
             return Ok(());
@@ -298,6 +436,7 @@ impl World {
     /// Applies an angular impulse (world frame) now: `ΔL = j`.
     pub fn apply_angular_impulse(&mut self, id: BodyId, angular_impulse: DVec3) -> Result<(), WorldError> {
         check_vec("angular impulse", angular_impulse)?;
+        self.wake_body(id)?;
         let body = self.body_mut(id)?;
         if body.kind == BodyKind::Dynamic {
             body.state.angular_velocity += body.inverse_inertia_world() * angular_impulse;

@@ -1,0 +1,202 @@
+//! The soft-step solver: the stages of one step, in order (Catto's Solver2D "soft step", as in
+//! Box2D v3):
+//!
+//! | stage | what it does |
+//! |---|---|
+//! | prepare | anchors, effective masses, step-start separations for every joint (and contact) |
+//! | per substep: integrate velocities | gravity, forces, half the torque kick, damping |
+//! | per substep: warm start | apply last substep's accumulated impulses |
+//! | per substep: solve | soft constraints with position bias (push apart / pull together) |
+//! | per substep: integrate positions | `x += h v`; rotation by the exact free-body flow |
+//! | per substep: relax | the same constraints, rigid and without bias, to remove the bias energy |
+//! | restitution | bounce where the approach speed was above the threshold |
+//! | store impulses | keep impulses for the next step's warm start; joint breaking |
+//!
+//! Substepping with soft constraints gives the stiffness of many iterations at the price of one
+//! iteration per substep; the relax pass removes the velocity the position bias added, so stacks
+//! rest without jitter or energy gain.
+
+use crate::dynamics::softness::Softness;
+use crate::dynamics::solver_body::SolverBody;
+use crate::math::DVec3;
+use crate::world::World;
+
+/// Solver settings. The defaults suit 60 Hz steps of everyday objects.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolverSettings {
+    /// Substeps per step. Default 4.
+    pub substeps: u32,
+    /// Stiffness of joint position correction, Hz (capped at a quarter of the substep rate).
+    pub joint_hertz: f64,
+    /// Damping ratio of joint position correction.
+    pub joint_damping_ratio: f64,
+    /// Stiffness of contact position correction, Hz (capped at a quarter of the substep rate).
+    pub contact_hertz: f64,
+    /// Damping ratio of contact position correction.
+    pub contact_damping_ratio: f64,
+    /// Largest speed at which overlapping bodies are pushed apart, m/s.
+    pub max_contact_push_velocity: f64,
+    /// Approach speed below which contacts do not bounce, m/s.
+    pub restitution_threshold: f64,
+    /// Reuse last step's impulses as the starting guess.
+    pub warm_starting: bool,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            substeps: 4,
+            joint_hertz: 60.0,
+            joint_damping_ratio: 2.0,
+            contact_hertz: 30.0,
+            contact_damping_ratio: 10.0,
+            max_contact_push_velocity: 3.0,
+            restitution_threshold: 1.0,
+            warm_starting: true,
+        }
+    }
+}
+
+/// Per-step constants every stage reads.
+#[derive(Clone, Debug)]
+pub(crate) struct StepContext {
+    pub dt: f64,
+    pub inv_dt: f64,
+    /// Substep length.
+    pub h: f64,
+    pub inv_h: f64,
+    pub substeps: u32,
+    pub gravity: DVec3,
+    pub joint_softness: Softness,
+    pub contact_softness: Softness,
+    /// Contacts against static (or kinematic) bodies: twice as stiff, since only one body moves.
+    pub static_softness: Softness,
+    pub max_contact_push_velocity: f64,
+    pub restitution_threshold: f64,
+    pub warm_starting: bool,
+}
+
+impl StepContext {
+    pub fn new(dt: f64, gravity: DVec3, settings: &SolverSettings) -> StepContext {
+        let substeps = settings.substeps.max(1);
+        let h = dt / f64::from(substeps);
+        // A soft constraint stiffer than a quarter of the substep rate is no longer resolved by
+        // the substeps and starts to ring; cap it there.
+        let max_hertz = 0.25 / h;
+        StepContext {
+            dt,
+            inv_dt: 1.0 / dt,
+            h,
+            inv_h: 1.0 / h,
+            substeps,
+            gravity,
+            joint_softness: Softness::new(
+                settings.joint_hertz.min(2.0 * max_hertz),
+                settings.joint_damping_ratio,
+                h,
+            ),
+            contact_softness: Softness::new(
+                settings.contact_hertz.min(max_hertz),
+                settings.contact_damping_ratio,
+                h,
+            ),
+            static_softness: Softness::new(
+                (2.0 * settings.contact_hertz).min(2.0 * max_hertz),
+                settings.contact_damping_ratio,
+                h,
+            ),
+            max_contact_push_velocity: settings.max_contact_push_velocity,
+            restitution_threshold: settings.restitution_threshold,
+            warm_starting: settings.warm_starting,
+        }
+    }
+}
+
+/// Two distinct elements of a slice, mutably.
+#[inline]
+pub(crate) fn pair_mut<T>(items: &mut [T], i: usize, j: usize) -> (&mut T, &mut T) {
+    debug_assert_ne!(i, j, "a constraint needs two different bodies");
+    if i < j {
+        let (lo, hi) = items.split_at_mut(j);
+        (&mut lo[i], &mut hi[0])
+    } else {
+        let (lo, hi) = items.split_at_mut(i);
+        (&mut hi[0], &mut lo[j])
+    }
+}
+
+impl World {
+    /// Runs the solver stages for one step of `dt` (see the module docs for the order).
+    pub(crate) fn solve(&mut self, dt: f64) {
+        let ctx = StepContext::new(dt, self.gravity, &self.solver_settings);
+
+        // Gather: the solver's working copy of every body, indexed by slot.
+        let mut bodies = std::mem::take(&mut self.solver_bodies);
+        bodies.clear();
+        bodies.resize(self.bodies.capacity_index(), SolverBody::FIXED);
+        for (id, body) in self.bodies.iter() {
+            // Sleeping bodies stand still: they take part as fixed bodies, if at all.
+            if body.is_awake() {
+                bodies[id.index()] = SolverBody::from_body(body);
+            }
+        }
+
+        // Prepare joints.
+        for (_, joint) in self.joints.iter_mut() {
+            if joint.broken {
+                continue;
+            }
+            let (Some(a), Some(b)) =
+                (self.bodies.get(joint.body_a.into()), self.bodies.get(joint.body_b.into()))
+            else {
+                continue;
+            };
+            joint.prepare(a, b, &ctx);
+            if !ctx.warm_starting {
+                joint.reset_impulses();
+            }
+        }
+
+        for _ in 0..ctx.substeps {
+            for body in bodies.iter_mut() {
+                body.integrate_velocity(ctx.gravity, ctx.h);
+            }
+            self.for_each_joint(&mut bodies, |joint, a, b| joint.warm_start(a, b));
+            self.for_each_joint(&mut bodies, |joint, a, b| joint.solve(a, b, &ctx, true));
+            for body in bodies.iter_mut() {
+                body.integrate_position(ctx.h);
+            }
+            self.for_each_joint(&mut bodies, |joint, a, b| joint.solve(a, b, &ctx, false));
+        }
+
+        // Store: joint breaking, then write the bodies back.
+        for (_, joint) in self.joints.iter_mut() {
+            if let Some(limit) = joint.break_force {
+                if !joint.broken && joint.linear_force(&ctx) > limit {
+                    joint.broken = true;
+                }
+            }
+        }
+        for (id, body) in self.bodies.iter_mut() {
+            if body.is_awake() {
+                bodies[id.index()].write_back(body);
+            }
+        }
+        self.solver_bodies = bodies;
+    }
+
+    /// Calls `f` for every active joint with its two solver bodies, in joint-slot order.
+    fn for_each_joint(
+        &mut self,
+        bodies: &mut [SolverBody],
+        mut f: impl FnMut(&mut crate::dynamics::joint::Joint, &mut SolverBody, &mut SolverBody),
+    ) {
+        for (_, joint) in self.joints.iter_mut() {
+            if joint.broken {
+                continue;
+            }
+            let (a, b) = pair_mut(bodies, joint.body_a.index(), joint.body_b.index());
+            f(joint, a, b);
+        }
+    }
+}

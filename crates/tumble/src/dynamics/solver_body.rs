@@ -1,0 +1,123 @@
+//! The solver's working copy of each body for one step, and the two integration stages that run
+//! inside every substep.
+//!
+//! Positions are tracked as the *change* of the centre of mass since the step began (`dp`):
+//! constraints compare changes, which keeps round-off small far from the origin.
+
+use crate::body::{Body, BodyKind};
+use crate::integrate::{free_rotation_flow, rotate_by_angular_velocity};
+use crate::math::{DMat3, DQuat, DVec3};
+
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SolverBody {
+    pub v: DVec3,
+    pub w: DVec3,
+    /// Centre-of-mass displacement since the start of the step, world frame.
+    pub dp: DVec3,
+    /// Body-frame orientation now.
+    pub q: DQuat,
+    pub inv_mass: f64,
+    /// World inverse inertia for the current `q` (refreshed after every position update).
+    pub inv_inertia: DMat3,
+    kind: BodyKind,
+    inertia_principal: DVec3,
+    principal_rotation_local: DQuat,
+    force: DVec3,
+    torque: DVec3,
+    gravity_scale: f64,
+    linear_damping: f64,
+    angular_damping: f64,
+}
+
+impl SolverBody {
+    /// A body that never moves (also stands in for removed slots).
+    pub const FIXED: SolverBody = SolverBody {
+        v: DVec3::ZERO,
+        w: DVec3::ZERO,
+        dp: DVec3::ZERO,
+        q: DQuat::IDENTITY,
+        inv_mass: 0.0,
+        inv_inertia: DMat3::ZERO,
+        kind: BodyKind::Static,
+        inertia_principal: DVec3::ONE,
+        principal_rotation_local: DQuat::IDENTITY,
+        force: DVec3::ZERO,
+        torque: DVec3::ZERO,
+        gravity_scale: 0.0,
+        linear_damping: 0.0,
+        angular_damping: 0.0,
+    };
+
+    pub fn from_body(body: &Body) -> SolverBody {
+        SolverBody {
+            v: body.state.linear_velocity,
+            w: body.state.angular_velocity,
+            dp: DVec3::ZERO,
+            q: body.state.rotation,
+            inv_mass: body.inverse_mass,
+            inv_inertia: body.inverse_inertia_world(),
+            kind: body.kind,
+            inertia_principal: body.inertia_principal,
+            principal_rotation_local: body.principal_rotation_local,
+            force: body.force_world,
+            torque: body.torque_world,
+            gravity_scale: body.gravity_scale,
+            linear_damping: body.linear_damping,
+            angular_damping: body.angular_damping,
+        }
+    }
+
+    /// Writes the step's result back into the body.
+    pub fn write_back(&self, body: &mut Body) {
+        body.state.com_world += self.dp;
+        body.state.rotation = self.q;
+        body.state.linear_velocity = self.v;
+        body.state.angular_velocity = self.w;
+    }
+
+    fn refresh_inverse_inertia(&mut self) {
+        let r = DMat3::from_quat(self.q * self.principal_rotation_local);
+        self.inv_inertia = r * DMat3::from_diagonal(self.inertia_principal.recip()) * r.transpose();
+    }
+
+    /// Stage "integrate velocities": gravity and applied forces, the first half of the torque
+    /// kick, damping (implicit, so stable for any rate).
+    pub fn integrate_velocity(&mut self, gravity: DVec3, h: f64) {
+        if self.kind != BodyKind::Dynamic {
+            return;
+        }
+        self.v += h * (gravity * self.gravity_scale + self.force * self.inv_mass);
+        self.v /= 1.0 + h * self.linear_damping;
+        if self.torque != DVec3::ZERO {
+            self.w += self.inv_inertia * (0.5 * h * self.torque);
+        }
+        self.w /= 1.0 + h * self.angular_damping;
+    }
+
+    /// Stage "integrate positions": `x += h v`, and the rotation by the exact free-rigid-body flow
+    /// (splitting into principal-axis rotations, `docs/free-rotation.md`), which also turns `ω`
+    /// the way a free body's does — that is where gyroscopic effects come from. Then the second
+    /// half of the torque kick.
+    pub fn integrate_position(&mut self, h: f64) {
+        match self.kind {
+            BodyKind::Static => {}
+            BodyKind::Kinematic => {
+                self.dp += h * self.v;
+                self.q = rotate_by_angular_velocity(self.q, self.w, h);
+            }
+            BodyKind::Dynamic => {
+                self.dp += h * self.v;
+                let q_principal = self.q * self.principal_rotation_local;
+                let inertia = self.inertia_principal;
+                let l_principal = inertia * (q_principal.inverse() * self.w);
+                let (q_principal, l_principal) = free_rotation_flow(q_principal, l_principal, inertia, h);
+                self.w = q_principal * (l_principal / inertia);
+                self.q = (q_principal * self.principal_rotation_local.inverse()).normalize();
+                self.refresh_inverse_inertia();
+                if self.torque != DVec3::ZERO {
+                    self.w += self.inv_inertia * (0.5 * h * self.torque);
+                }
+            }
+        }
+    }
+}
