@@ -63,6 +63,11 @@ kind = "kinematic"
 linear_damping = 0.1
 angular_damping = 0.2
 gravity_scale = 0.5
+friction = 0.3
+restitution = 0.5
+rolling_friction = 0.01
+torsional_friction = 0.02
+allow_sleep = false
 "#;
     let scene = Scene::from_str(text, FILE).unwrap();
     assert_eq!((scene.dt, scene.duration), (0.01, 2.0));
@@ -71,6 +76,16 @@ gravity_scale = 0.5
     assert_eq!(def.kind, tumble::BodyKind::Kinematic);
     assert_eq!(def.angular_velocity, tumble::DVec3::new(0.01, 5.0, 0.01));
     assert_eq!((def.linear_damping, def.angular_damping, def.gravity_scale), (0.1, 0.2, 0.5));
+    assert_eq!(
+        (
+            def.material.friction,
+            def.material.restitution,
+            def.material.rolling_friction,
+            def.material.torsional_friction
+        ),
+        (0.3, 0.5, 0.01, 0.02)
+    );
+    assert!(!def.allow_sleep);
     match def.shape.as_ref().unwrap() {
         tumble::Shape::Compound(c) => {
             assert_eq!(c.children().len(), 4);
@@ -210,6 +225,20 @@ fn impossible_world_values_are_errors() {
         &format!("{GOOD_BODY}linear_velocity = [inf, 0.0, 0.0]\n"),
         5,
         &["body \"ball\": linear_velocity must be finite"],
+    );
+}
+
+#[test]
+fn impossible_material_values_are_errors() {
+    expect_error(
+        &format!("{GOOD_BODY}restitution = 1.5\n"),
+        5,
+        &["body \"ball\": restitution must be in [0, 1], got 1.5"],
+    );
+    expect_error(
+        &format!("{GOOD_BODY}friction = -0.1\n"),
+        5,
+        &["body \"ball\": friction must be >= 0, got -0.1"],
     );
 }
 

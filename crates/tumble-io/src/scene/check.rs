@@ -80,6 +80,7 @@ impl Checker<'_> {
         let at = format!("body \"{name}\": ");
         let at = at.as_str();
 
+        let defaults = BodyDef::default();
         let kind = match raw.kind.as_ref().map(|k| *k.get_ref()) {
             None | Some(RawKind::Dynamic) => BodyKind::Dynamic,
             Some(RawKind::Static) => BodyKind::Static,
@@ -96,7 +97,7 @@ impl Checker<'_> {
         };
         let density = match &raw.density {
             Some(d) => self.number(at, "density", d, positive, "> 0")?,
-            None => BodyDef::default().density,
+            None => defaults.density,
         };
         let shape = self.shape(at, "shape", &raw.shape)?;
         let def = BodyDef {
@@ -127,8 +128,44 @@ impl Checker<'_> {
                 ">= 0",
             )?,
             gravity_scale: self.number_or(at, "gravity_scale", &raw.gravity_scale, 1.0, |_| true, "")?,
+            allow_sleep: raw.allow_sleep.unwrap_or(defaults.allow_sleep),
+            material: self.material(at, raw)?,
+            ..defaults
         };
         Ok(SceneBody { def, line: line_of(self.text, raw.name.span().start) })
+    }
+
+    /// Surface material; unset coefficients keep the engine's defaults.
+    fn material(&self, at: &str, raw: &RawBody) -> Result<tumble::Material> {
+        let d = tumble::Material::default();
+        let non_negative = |v: f64| v >= 0.0;
+        Ok(tumble::Material {
+            friction: self.number_or(at, "friction", &raw.friction, d.friction, non_negative, ">= 0")?,
+            restitution: self.number_or(
+                at,
+                "restitution",
+                &raw.restitution,
+                d.restitution,
+                |v| (0.0..=1.0).contains(&v),
+                "in [0, 1]",
+            )?,
+            rolling_friction: self.number_or(
+                at,
+                "rolling_friction",
+                &raw.rolling_friction,
+                d.rolling_friction,
+                non_negative,
+                ">= 0",
+            )?,
+            torsional_friction: self.number_or(
+                at,
+                "torsional_friction",
+                &raw.torsional_friction,
+                d.torsional_friction,
+                non_negative,
+                ">= 0",
+            )?,
+        })
     }
 
     /// A shape at `key` (e.g. `shape` or `shape.parts[2].shape`).

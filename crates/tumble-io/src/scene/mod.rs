@@ -19,6 +19,9 @@
 //! linear_damping = 0.0
 //! angular_damping = 0.0
 //! gravity_scale = 1.0
+//! friction = 0.6                 # surface material: friction, restitution (0..1),
+//! restitution = 0.0              #   rolling_friction, torsional_friction (engine defaults)
+//! allow_sleep = true
 //! ```
 //! Shapes: `sphere {radius}`, `box {half_extents}`, `capsule|cylinder|cone {radius, half_height}`
 //! (along local Z), `mesh {file}` (OBJ or STL, relative to the scene file), and
@@ -109,7 +112,7 @@ impl Scene {
 
     /// Builds the world: gravity from `[world]`, then the bodies in file order.
     pub fn build_world(&self) -> Result<SceneWorld, IoError> {
-        let mut world = World::new(WorldDef { gravity: self.gravity })?;
+        let mut world = World::new(WorldDef { gravity: self.gravity, ..WorldDef::default() })?;
         let mut bodies = Vec::with_capacity(self.bodies.len());
         for body in &self.bodies {
             let id = world.add_body(body.def.clone()).map_err(|e| IoError::AtLine {

@@ -45,6 +45,11 @@ pub(super) struct RawBody {
     pub linear_damping: Option<Number>,
     pub angular_damping: Option<Number>,
     pub gravity_scale: Option<Number>,
+    pub allow_sleep: Option<bool>,
+    pub friction: Option<Number>,
+    pub restitution: Option<Number>,
+    pub rolling_friction: Option<Number>,
+    pub torsional_friction: Option<Number>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq, Debug)]
