@@ -100,6 +100,9 @@ impl Checker<'_> {
             None => defaults.density,
         };
         let shape = self.shape(at, "shape", &raw.shape)?;
+        // `..defaults` is there for fields the core adds later: they take the engine's default
+        // until the scene format learns them, instead of breaking this crate's build.
+        #[allow(clippy::needless_update)]
         let def = BodyDef {
             name,
             kind,
