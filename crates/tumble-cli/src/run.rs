@@ -1,0 +1,227 @@
+//! Running a scene: step it for its duration, record it, and measure how well the invariants of
+//! free motion held — the numbers a user looks at to trust (or doubt) a run.
+//!
+//! The invariants checked, for dynamic bodies:
+//! - total energy E = kinetic + gravitational potential is constant;
+//! - angular momentum about the system's centre of mass is constant (uniform gravity exerts no
+//!   torque about it);
+//! - linear momentum changes only by gravity: p(t) = p₀ + t·Σ mᵢ sᵢ g (sᵢ the gravity scale).
+//!
+//! Contacts and joints will add and remove energy legitimately; until they land, any drift is the
+//! integrator's error.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use tumble::{BodyKind, DVec3, World};
+use tumble_io::{IoError, RecordingWriter, Scene};
+
+pub struct RunOptions {
+    pub out: PathBuf,
+    pub every: u64,
+    pub duration: f64,
+    pub dt: f64,
+}
+
+/// What a run did and how well it conserved what it should.
+pub struct Summary {
+    pub bodies: usize,
+    pub steps: u64,
+    pub dt: f64,
+    pub simulated_time: f64,
+    pub wall_time: Duration,
+    /// max |E − E₀| / |E₀| (absolute when E₀ = 0).
+    pub energy_drift: f64,
+    pub energy_relative: bool,
+    /// max |L − L₀| / |L₀| about the system centre of mass (absolute when L₀ = 0).
+    pub angular_momentum_drift: f64,
+    pub angular_momentum_relative: bool,
+    /// max |p − p₀ − t Σ m s g|, kg·m/s.
+    pub linear_momentum_drift: f64,
+    pub out: PathBuf,
+    pub frames: u64,
+    pub every: u64,
+}
+
+impl Summary {
+    pub fn render(&self, scene_label: &str) -> String {
+        let wall = self.wall_time.as_secs_f64();
+        let rate = if wall > 0.0 { format!("{:.0}", self.steps as f64 / wall) } else { "-".into() };
+        let rel = |relative: bool| if relative { "" } else { " (absolute: initial value is 0)" };
+        format!(
+            "scene:                  {scene_label}\n\
+             bodies:                 {}\n\
+             steps:                  {} (dt {} s)\n\
+             simulated time:         {} s\n\
+             wall time:              {:.3} s\n\
+             steps/s:                {rate}\n\
+             energy drift:           {:.3e}  max |E-E0|/|E0|, E = kinetic + potential{}\n\
+             angular momentum drift: {:.3e}  max |L-L0|/|L0|, about the system centre of mass{}\n\
+             linear momentum drift:  {:.3e}  max |p - p0 - M g t|, kg m/s\n\
+             output:                 {} ({} frames, every {} step{})\n",
+            self.bodies,
+            self.steps,
+            self.dt,
+            short(self.simulated_time),
+            wall,
+            self.energy_drift,
+            rel(self.energy_relative),
+            self.angular_momentum_drift,
+            rel(self.angular_momentum_relative),
+            self.linear_momentum_drift,
+            self.out.display(),
+            self.frames,
+            self.every,
+            if self.every == 1 { "" } else { "s" },
+        )
+    }
+}
+
+/// `x` to 9 decimals without trailing zeros: the accumulated time 19.999999999999186 reads as 20.
+fn short(x: f64) -> String {
+    let s = format!("{x:.9}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.into()
+    }
+}
+
+/// `tumble run`: read, check overrides, run.
+pub fn run_scene_file(
+    path: &Path,
+    out: Option<PathBuf>,
+    every: u64,
+    duration: Option<f64>,
+    dt: Option<f64>,
+) -> Result<String, String> {
+    let scene = Scene::from_file(path).map_err(|e| e.to_string())?;
+    if let Some(dt) = dt.filter(|&dt| !(dt.is_finite() && dt > 0.0)) {
+        return Err(format!("--dt must be finite and > 0, got {dt}"));
+    }
+    if let Some(d) = duration.filter(|&d| !(d.is_finite() && d >= 0.0)) {
+        return Err(format!("--duration must be finite and >= 0, got {d}"));
+    }
+    let out = out.unwrap_or_else(|| {
+        let stem = path.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
+        PathBuf::from("out").join(format!("{stem}.csv"))
+    });
+    let options =
+        RunOptions { out, every, duration: duration.unwrap_or(scene.duration), dt: dt.unwrap_or(scene.dt) };
+    let summary = run_scene(&scene, &options).map_err(|e| e.to_string())?;
+    Ok(summary.render(&path.display().to_string()))
+}
+
+/// Number of steps to cover `duration`: rounds when `duration / dt` is an integer up to
+/// round-off (20 s at 1/240 s is 4800 steps, not 4801), otherwise covers it fully.
+pub fn step_count(duration: f64, dt: f64) -> u64 {
+    let n = duration / dt;
+    let nearest = n.round();
+    if (n - nearest).abs() <= 1e-9 * nearest.max(1.0) {
+        nearest as u64
+    } else {
+        n.ceil() as u64
+    }
+}
+
+/// Total gravity force on the dynamic bodies, Σ mᵢ sᵢ g.
+fn gravity_force(world: &World) -> DVec3 {
+    world
+        .bodies()
+        .filter(|(_, b)| b.kind() == BodyKind::Dynamic)
+        .map(|(_, b)| b.mass() * b.gravity_scale() * world.gravity())
+        .sum()
+}
+
+pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<Summary, IoError> {
+    let mut built = scene.build_world()?;
+    let world = &mut built.world;
+    let steps = step_count(options.duration, options.dt);
+    let mut recording = RecordingWriter::create(&options.out, options.every)?;
+    recording.write_frame(world)?;
+
+    let energy = |w: &World| w.kinetic_energy() + w.potential_energy();
+    let e0 = energy(world);
+    let l0 = world.angular_momentum_about_com();
+    let p0 = world.linear_momentum();
+    let weight = gravity_force(world);
+    let (mut max_de, mut max_dl, mut max_dp) = (0.0_f64, 0.0_f64, 0.0_f64);
+
+    let start = Instant::now();
+    let show_progress = std::io::stderr().is_terminal();
+    let mut progress: Option<indicatif::ProgressBar> = None;
+    for step in 0..steps {
+        world.step(options.dt)?;
+        recording.record_step(world)?;
+
+        let e = energy(world);
+        if !e.is_finite() {
+            return Err(IoError::AtLine {
+                path: scene.path.clone(),
+                line: 1,
+                message: format!(
+                    "the simulation blew up: energy became {e} at t = {} s (step {}); try a smaller dt",
+                    world.time(),
+                    step + 1
+                ),
+            });
+        }
+        max_de = max_de.max((e - e0).abs());
+        max_dl = max_dl.max((world.angular_momentum_about_com() - l0).length());
+        max_dp = max_dp.max((world.linear_momentum() - p0 - weight * world.time()).length());
+
+        // A bar only for runs long enough to wonder about, and only for a person watching.
+        if show_progress && step % 256 == 0 {
+            if progress.is_none() && start.elapsed() > Duration::from_secs(1) {
+                let bar = indicatif::ProgressBar::new(steps);
+                bar.set_style(
+                    indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  eta {eta}")
+                        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+                );
+                progress = Some(bar);
+            }
+            if let Some(bar) = &progress {
+                bar.set_position(step + 1);
+            }
+        }
+    }
+    if let Some(bar) = progress {
+        bar.finish_and_clear();
+    }
+    let wall_time = start.elapsed();
+    let frames = recording.frames_written();
+    recording.finish()?;
+
+    let relative = |drift: f64, scale: f64| if scale > 0.0 { (drift / scale, true) } else { (drift, false) };
+    let (energy_drift, energy_relative) = relative(max_de, e0.abs());
+    let (angular_momentum_drift, angular_momentum_relative) = relative(max_dl, l0.length());
+    Ok(Summary {
+        bodies: built.bodies.len(),
+        steps,
+        dt: options.dt,
+        simulated_time: world.time(),
+        wall_time,
+        energy_drift,
+        energy_relative,
+        angular_momentum_drift,
+        angular_momentum_relative,
+        linear_momentum_drift: max_dp,
+        out: options.out.clone(),
+        frames,
+        every: options.every,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::step_count;
+
+    #[test]
+    fn step_count_rounds_exact_multiples_and_covers_the_rest() {
+        assert_eq!(step_count(20.0, 1.0 / 240.0), 4800);
+        assert_eq!(step_count(1.0, 0.3), 4);
+        assert_eq!(step_count(0.0, 0.01), 0);
+    }
+}

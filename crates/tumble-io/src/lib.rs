@@ -1,0 +1,27 @@
+//! # tumble-io
+//!
+//! Tumble's files: scene TOML in (checked, with errors that name the file, line and key),
+//! triangle meshes in (OBJ, STL), recordings out and back in (CSV).
+//!
+//! ```no_run
+//! use tumble_io::{Scene, RecordingWriter};
+//! let scene = Scene::from_file("scenes/demo.toml")?;
+//! let mut built = scene.build_world()?;
+//! let mut out = RecordingWriter::create("out/demo.csv", 1)?;
+//! out.write_frame(&built.world)?;
+//! for _ in 0..10 {
+//!     built.world.step(built.dt)?;
+//!     out.record_step(&built.world)?;
+//! }
+//! # Ok::<(), tumble_io::IoError>(())
+//! ```
+
+pub mod error;
+pub mod mesh;
+pub mod recording;
+pub mod scene;
+
+pub use error::IoError;
+pub use mesh::{load_mesh, load_obj, load_stl, obj_from_str, stl_from_bytes};
+pub use recording::{BodySample, Frame, Recording, RecordingWriter, RECORDING_HEADER};
+pub use scene::{Scene, SceneBody, SceneWorld};
