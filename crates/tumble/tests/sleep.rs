@@ -56,7 +56,7 @@ fn damped_pendulum_sleeps_as_one_island_and_wakes_together() {
 }
 
 #[test]
-fn a_body_that_may_not_sleep_keeps_its_island_awake() {
+fn a_body_that_may_not_sleep_stays_awake() {
     let mut world = World::new(tumble::WorldDef { gravity: DVec3::ZERO, ..Default::default() }).unwrap();
     let id = world
         .add_body(BodyDef {
@@ -66,7 +66,11 @@ fn a_body_that_may_not_sleep_keeps_its_island_awake() {
         })
         .unwrap();
     let other = world
-        .add_body(BodyDef { shape: Some(Shape::Sphere(Sphere::new(0.1).unwrap())), ..Default::default() })
+        .add_body(BodyDef {
+            shape: Some(Shape::Sphere(Sphere::new(0.1).unwrap())),
+            position: DVec3::new(5.0, 0.0, 0.0),
+            ..Default::default()
+        })
         .unwrap();
     for _ in 0..120 {
         world.step(1.0 / 60.0).unwrap();
