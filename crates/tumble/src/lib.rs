@@ -6,6 +6,7 @@
 //! Conventions: f64, SI units, right-handed with **Z up**, quaternions as (x, y, z, w).
 
 pub mod body;
+pub mod dynamics;
 pub mod id;
 pub mod integrate;
 pub mod mass;

@@ -1,0 +1,3 @@
+//! Dynamics: constraint rows and the solvers that find their impulses.
+
+pub mod lcp;
