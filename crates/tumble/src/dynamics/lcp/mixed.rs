@@ -44,9 +44,11 @@
 //! ```
 //!
 //! where `E` picks each friction row's normal. `M` is copositive (`zᵀMz = λ_Cᵀ S λ_C + Σ μ λ_n β ≥ 0`
-//! on `z ≥ 0`, after the `±I` terms cancel), and Anitescu & Potra (1997) show that for this
-//! structure — including joints — Lemke's algorithm does not end on a ray when the constraints are
-//! consistent, so the problem is solvable by [`super::lemke::solve_lcp`]. The `λ` it returns need
+//! on `z ≥ 0`, after the `±I` terms cancel). Anitescu & Potra (1997) showed for this structure
+//! (with one slack per contact, and with joints) that Lemke's algorithm does not end on a ray when
+//! the constraints admit a motion; their argument uses the copositivity and the block sign pattern,
+//! which the per-row variant shares. So with a consistent bias the problem is solvable by
+//! [`super::lemke::solve_lcp`]. The `λ` it returns need
 //! not be unique (four contacts under a box are statically indeterminate), but every solution has the
 //! same free-body answer wherever the physics fixes it (sums of normal impulses, post velocities).
 

@@ -40,8 +40,8 @@ pub(crate) fn projected_gauss_seidel(
 mod tests {
     use super::*;
     use crate::dynamics::lcp::{
-        apply_impulses, contact_rows, residual, solve_exact, Anchor, BodyVelocity, ConstraintSystem,
-        ContactPoint, LcpBody, Row,
+        apply_impulses, ball_joint_rows, contact_rows, point_row, residual, solve_exact, Anchor,
+        BodyVelocity, ConstraintSystem, ContactPoint, LcpBody, Row, RowKind as Kind,
     };
     use crate::math::{DMat3, DVec3};
 
@@ -68,7 +68,13 @@ mod tests {
         LcpBody::new(1.0 / m, DMat3::from_diagonal(i.recip()))
     }
 
-    fn compare(bodies: &[LcpBody], vel: &[BodyVelocity], rows: &[Row], iterations: usize, tol: f64) {
+    fn compare(
+        bodies: &[LcpBody],
+        vel: &[BodyVelocity],
+        rows: &[Row],
+        iterations: usize,
+        tol: f64,
+    ) -> Vec<f64> {
         let exact = solve_exact(bodies, vel, rows).unwrap();
         let sys = ConstraintSystem::assemble(bodies, vel, rows).unwrap();
         let kinds: Vec<RowKind> = rows.iter().map(|r| r.kind).collect();
@@ -80,6 +86,7 @@ mod tests {
             assert!((x.linear - y.linear).length() < tol, "{x:?} vs {y:?}");
             assert!((x.angular - y.angular).length() < tol, "{x:?} vs {y:?}");
         }
+        exact.impulses
     }
 
     #[test]
@@ -102,5 +109,31 @@ mod tests {
         let v = [BodyVelocity::new(DVec3::new(0.0, 0.0, -G * DT), DVec3::ZERO); 3];
         // Stacks are where Gauss–Seidel is slow (the mass ratio 4:1 does not help): many sweeps.
         compare(&bodies, &v, &rows, 20000, 1e-9);
+    }
+
+    #[test]
+    fn pgs_agrees_with_exact_on_a_jointed_chain_touching_the_ground() {
+        // Two boxes hung from the world by ball joints in a chain, the lower one pressed onto the
+        // ground at one corner (frictionless, so the post velocities are unique).
+        let h = DVec3::new(0.3, 0.2, 0.1);
+        let bodies = [box_body(1.0, h), box_body(2.0, h)];
+        let mut rows: Vec<Row> =
+            ball_joint_rows(Anchor::WORLD, Anchor::new(0, DVec3::new(-0.3, 0.0, 0.1))).to_vec();
+        rows.extend(ball_joint_rows(
+            Anchor::new(0, DVec3::new(0.3, 0.0, -0.1)),
+            Anchor::new(1, DVec3::new(-0.3, 0.0, 0.1)),
+        ));
+        rows.push(point_row(
+            Anchor::WORLD,
+            Anchor::new(1, DVec3::new(0.3, 0.2, -0.1)),
+            DVec3::Z,
+            Kind::Normal,
+        ));
+        let v = [
+            BodyVelocity::new(DVec3::new(0.2, -0.1, -G * DT), DVec3::new(0.0, 0.5, 0.1)),
+            BodyVelocity::new(DVec3::new(0.1, 0.3, -1.0), DVec3::new(-0.4, 0.2, 0.0)),
+        ];
+        let exact = compare(&bodies, &v, &rows, 20000, 1e-9);
+        assert!(exact[6] > 0.1, "the contact should be pressed: {exact:?}");
     }
 }

@@ -19,9 +19,9 @@ use super::error::LcpError;
 use crate::math::{is_finite_vec, mat3_max_abs, DMat3, DVec3};
 
 /// The most rows [`ConstraintSystem::assemble`] and [`super::solve_exact`] accept. The friction
-/// formulation turns `r` rows into an LCP of up to `3r` unknowns with a `3r × 6r` tableau; at 128
-/// rows a solve is a few tens of milliseconds, and the cube law makes anything much bigger the
-/// iterative solver's job.
+/// formulation turns `r` rows into an LCP of up to `3r` unknowns with a `3r × (6r + 2)` tableau, and
+/// each pivot costs O(r²): at 126 random frictional contact rows a solve measured up to ~700 pivots
+/// and ~0.1 s in an optimised build. Bigger systems are the iterative solver's job.
 pub const MAX_ROWS: usize = 128;
 
 /// A body as the solver sees it: inverse mass and world-frame inverse inertia about the centre of
