@@ -7,6 +7,7 @@ pub mod contact;
 pub(crate) mod contact_solver;
 pub(crate) mod island;
 pub mod joint;
+pub mod lcp;
 pub mod material;
 pub(crate) mod softness;
 pub mod solver;
