@@ -90,13 +90,16 @@ fn j2_compound_pendulum_period() {
     let rod = world
         .add_body(BodyDef {
             name: "rod".into(),
-            shape: Some(Shape::Cuboid(Cuboid::new(DVec3::new(width / 2.0, width / 2.0, length / 2.0)).unwrap())),
+            shape: Some(Shape::Cuboid(
+                Cuboid::new(DVec3::new(width / 2.0, width / 2.0, length / 2.0)).unwrap(),
+            )),
             position: pivot_point + orientation * DVec3::new(0.0, 0.0, -length / 2.0),
             orientation,
             ..Default::default()
         })
         .unwrap();
-    let hinge = JointDef::new(pivot, rod, pivot_point, JointKind::Hinge(HingeJoint::default())).with_axis(DVec3::Y);
+    let hinge =
+        JointDef::new(pivot, rod, pivot_point, JointKind::Hinge(HingeJoint::default())).with_axis(DVec3::Y);
     let joint = world.add_joint(hinge).unwrap();
 
     let dt = 1.0 / 60.0;
@@ -153,7 +156,9 @@ fn j3_gyroscope_precession() {
         })
         .unwrap();
     let joint = world
-        .add_joint(JointDef::new(pivot, disc, pivot_point, JointKind::Ball(BallJoint::new())).with_axis(DVec3::X))
+        .add_joint(
+            JointDef::new(pivot, disc, pivot_point, JointKind::Ball(BallJoint::new())).with_axis(DVec3::X),
+        )
         .unwrap();
 
     let dt = 1.0 / 60.0;
@@ -207,7 +212,11 @@ fn heavy_chain(settings: SolverSettings, nudge: f64) -> (f64, f64, usize) {
             })
             .unwrap();
         link_mass = world.body(link).unwrap().mass();
-        joints.push(world.add_joint(JointDef::new(previous, link, anchor, JointKind::Ball(BallJoint::new()))).unwrap());
+        joints.push(
+            world
+                .add_joint(JointDef::new(previous, link, anchor, JointKind::Ball(BallJoint::new())))
+                .unwrap(),
+        );
         previous = link;
     }
     let bottom = top - DVec3::Z * (link_length * f64::from(links));
@@ -222,7 +231,9 @@ fn heavy_chain(settings: SolverSettings, nudge: f64) -> (f64, f64, usize) {
             ..Default::default()
         })
         .unwrap();
-    joints.push(world.add_joint(JointDef::new(previous, weight, bottom, JointKind::Ball(BallJoint::new()))).unwrap());
+    joints.push(
+        world.add_joint(JointDef::new(previous, weight, bottom, JointKind::Ball(BallJoint::new()))).unwrap(),
+    );
 
     let largest = |world: &World| {
         joints

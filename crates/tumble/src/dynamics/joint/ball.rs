@@ -13,9 +13,9 @@
 //!   as in Jolt's swing–twist part): rows `φ − lower ≥ 0` and `upper − φ ≥ 0`.
 
 use super::frames::JointPose;
+use super::hard_softness;
 use super::parts::{AngularAxisPart, PointPart, RowDrive};
 use super::settings::{check_angle_limits, Limits};
-use super::hard_softness;
 use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
@@ -80,7 +80,13 @@ impl BallJoint {
         Ok(())
     }
 
-    pub(crate) fn warm_start(&self, parts: &BallParts, pose: &JointPose, a: &mut SolverBody, b: &mut SolverBody) {
+    pub(crate) fn warm_start(
+        &self,
+        parts: &BallParts,
+        pose: &JointPose,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
         if let Some(half_angle) = self.swing_limit {
             if let Some((axis, _)) = swing_row(pose, half_angle) {
                 parts.swing.warm_start(a, b, axis);
@@ -132,7 +138,8 @@ impl BallJoint {
 
     /// Magnitudes of the accumulated (per-substep) linear and angular impulses.
     pub(crate) fn impulses(parts: &BallParts) -> (f64, f64) {
-        let angular = parts.swing.impulse.abs() + (parts.twist_lower.impulse - parts.twist_upper.impulse).abs();
+        let angular =
+            parts.swing.impulse.abs() + (parts.twist_lower.impulse - parts.twist_upper.impulse).abs();
         (parts.point.impulse.length(), angular)
     }
 }

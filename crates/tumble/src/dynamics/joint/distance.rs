@@ -115,7 +115,13 @@ impl DistanceJoint {
         (AxisJacobian::between_points(n, pose.r_a, pose.r_b), distance)
     }
 
-    pub(crate) fn warm_start(&self, parts: &DistanceParts, pose: &JointPose, a: &mut SolverBody, b: &mut SolverBody) {
+    pub(crate) fn warm_start(
+        &self,
+        parts: &DistanceParts,
+        pose: &JointPose,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
         let (row, _) = Self::row(pose);
         parts.axial.warm_start(a, b, &row);
         parts.lower.warm_start(a, b, &row);

@@ -23,7 +23,13 @@ impl FixedJoint {
         FixedJoint {}
     }
 
-    pub(crate) fn warm_start(&self, parts: &FixedParts, pose: &JointPose, a: &mut SolverBody, b: &mut SolverBody) {
+    pub(crate) fn warm_start(
+        &self,
+        parts: &FixedParts,
+        pose: &JointPose,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
         parts.rotation.warm_start(a, b);
         parts.point.warm_start(a, b, pose.r_a, pose.r_b);
     }

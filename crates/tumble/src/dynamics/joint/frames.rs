@@ -73,7 +73,12 @@ pub(crate) struct JointPose {
 
 impl JointPose {
     /// The pose of a joint's frames on two bodies at rest state (for queries outside the step).
-    pub fn from_bodies(frame_a_local: &Transform, frame_b_local: &Transform, a: &Body, b: &Body) -> JointPose {
+    pub fn from_bodies(
+        frame_a_local: &Transform,
+        frame_b_local: &Transform,
+        a: &Body,
+        b: &Body,
+    ) -> JointPose {
         let r_a = a.orientation() * (frame_a_local.translation - a.com_local());
         let r_b = b.orientation() * (frame_b_local.translation - b.com_local());
         JointPose {

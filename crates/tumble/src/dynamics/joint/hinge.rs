@@ -11,7 +11,9 @@
 use super::frames::{wrap_angle, JointPose};
 use super::hard_softness;
 use super::parts::{AngularAxisPart, HingeAxes, HingeRotationPart, PointPart, RowDrive};
-use super::settings::{check_angle_limits, check_finite, check_motor, check_spring, Limits, Motor, SpringSettings};
+use super::settings::{
+    check_angle_limits, check_finite, check_motor, check_spring, Limits, Motor, SpringSettings,
+};
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
@@ -42,7 +44,10 @@ pub(crate) struct HingeParts {
 }
 
 fn hinge_axes(pose: &JointPose) -> HingeAxes {
-    HingeAxes { axis_a: pose.axis_a(), perpendicular_b: [pose.rotation_b * DVec3::X, pose.rotation_b * DVec3::Y] }
+    HingeAxes {
+        axis_a: pose.axis_a(),
+        perpendicular_b: [pose.rotation_b * DVec3::X, pose.rotation_b * DVec3::Y],
+    }
 }
 
 impl HingeJoint {
@@ -59,7 +64,13 @@ impl HingeJoint {
         check_finite("hinge spring_target_angle", self.spring_target_angle)
     }
 
-    pub(crate) fn warm_start(&self, parts: &HingeParts, pose: &JointPose, a: &mut SolverBody, b: &mut SolverBody) {
+    pub(crate) fn warm_start(
+        &self,
+        parts: &HingeParts,
+        pose: &JointPose,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
         let axis = pose.axis_a();
         parts.spring.warm_start(a, b, axis);
         parts.motor.warm_start(a, b, axis);

@@ -290,7 +290,13 @@ impl Joint {
     }
 
     /// Stage "solve" (`use_bias`) or "relax" (`!use_bias`).
-    pub(crate) fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext, use_bias: bool) {
+    pub(crate) fn solve(
+        &mut self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        ctx: &StepContext,
+        use_bias: bool,
+    ) {
         let pose = self.frames.pose(a, b);
         with_parts!(&self.kind, &mut self.parts, |settings, parts| {
             settings.solve(parts, &pose, a, b, ctx, use_bias)

@@ -80,10 +80,7 @@ pub(crate) fn check_limits(what: &str, limits: &Limits) -> Result<(), String> {
 pub(crate) fn check_angle_limits(what: &str, limits: &Limits) -> Result<(), String> {
     check_limits(what, limits)?;
     if limits.lower < -PI || limits.upper > PI {
-        return Err(format!(
-            "{what} must lie within [-pi, pi], got [{}, {}]",
-            limits.lower, limits.upper
-        ));
+        return Err(format!("{what} must lie within [-pi, pi], got [{}, {}]", limits.lower, limits.upper));
     }
     Ok(())
 }

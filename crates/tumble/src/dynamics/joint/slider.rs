@@ -44,7 +44,9 @@ pub(crate) struct SliderParts {
 
 /// The Jacobians of the slide axis and of the two perpendicular rows now.
 fn jacobians(pose: &JointPose) -> (AxisJacobian, [AxisJacobian; 2]) {
-    let row = |local: DVec3| AxisJacobian::along_axis_of_a(pose.rotation_a * local, pose.r_a, pose.r_b, pose.separation);
+    let row = |local: DVec3| {
+        AxisJacobian::along_axis_of_a(pose.rotation_a * local, pose.r_a, pose.r_b, pose.separation)
+    };
     (row(DVec3::Z), [row(DVec3::X), row(DVec3::Y)])
 }
 
@@ -62,7 +64,13 @@ impl SliderJoint {
         check_finite("slider spring_target_position", self.spring_target_position)
     }
 
-    pub(crate) fn warm_start(&self, parts: &SliderParts, pose: &JointPose, a: &mut SolverBody, b: &mut SolverBody) {
+    pub(crate) fn warm_start(
+        &self,
+        parts: &SliderParts,
+        pose: &JointPose,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
         let (axis, perpendicular) = jacobians(pose);
         parts.spring.warm_start(a, b, &axis);
         parts.motor.warm_start(a, b, &axis);
@@ -111,7 +119,8 @@ impl SliderJoint {
     /// Magnitudes of the accumulated (per-substep) linear and angular impulses.
     pub(crate) fn impulses(parts: &SliderParts) -> (f64, f64) {
         let axial = parts.spring.impulse + parts.motor.impulse + parts.lower.impulse - parts.upper.impulse;
-        let linear = DVec3::new(parts.perpendicular[0].impulse, parts.perpendicular[1].impulse, axial).length();
+        let linear =
+            DVec3::new(parts.perpendicular[0].impulse, parts.perpendicular[1].impulse, axial).length();
         (linear, parts.rotation.impulse.length())
     }
 }

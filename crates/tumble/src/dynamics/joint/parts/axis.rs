@@ -80,7 +80,13 @@ impl AxisPart {
         }
     }
 
-    pub fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, jacobian: &AxisJacobian, drive: RowDrive) {
+    pub fn solve(
+        &mut self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        jacobian: &AxisJacobian,
+        drive: RowDrive,
+    ) {
         let m = jacobian.effective_mass(a, b);
         let applied = drive.solve(&mut self.impulse, m, jacobian.velocity(a, b));
         jacobian.apply(a, b, applied);
@@ -122,7 +128,8 @@ mod tests {
         };
         let eps = 1e-6;
         let numeric = (c(eps) - c(-eps)) / (2.0 * eps);
-        let jac = AxisJacobian::along_axis_of_a(n_local, ra_local, rb_local, (xb + rb_local) - (xa + ra_local));
+        let jac =
+            AxisJacobian::along_axis_of_a(n_local, ra_local, rb_local, (xb + rb_local) - (xa + ra_local));
         assert!((jac.velocity(&a, &b) - numeric).abs() < 1e-8, "{} vs {numeric}", jac.velocity(&a, &b));
     }
 
@@ -133,7 +140,8 @@ mod tests {
         let mut b = body(2.0, DVec3::new(1.0, 4.0, 0.5));
         a.v = DVec3::new(1.0, 2.0, 0.0);
         b.w = DVec3::new(0.0, 3.0, -1.0);
-        let jac = AxisJacobian::between_points(DVec3::X, DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, 0.0, 1.0));
+        let jac =
+            AxisJacobian::between_points(DVec3::X, DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, 0.0, 1.0));
         let mut part = AxisPart::default();
         part.solve(&mut a, &mut b, &jac, RowDrive::soft(0.0, Softness::RIGID_VELOCITY));
         assert!(jac.velocity(&a, &b).abs() < 1e-14);

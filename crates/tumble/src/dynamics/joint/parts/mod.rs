@@ -109,7 +109,13 @@ impl RowDrive {
     /// A velocity motor: drives `Ċ` to `target_speed` with `|λ_acc| ≤ max_impulse` per substep
     /// (`max_force · h`). A motor is rigid (full mass, no leak): its softness is the force cap.
     pub fn motor(target_speed: f64, max_impulse: f64) -> RowDrive {
-        RowDrive { bias: -target_speed, mass_scale: 1.0, impulse_scale: 0.0, lower: -max_impulse, upper: max_impulse }
+        RowDrive {
+            bias: -target_speed,
+            mass_scale: 1.0,
+            impulse_scale: 0.0,
+            lower: -max_impulse,
+            upper: max_impulse,
+        }
     }
 
     /// A one-sided row keeping `C ≥ 0` with a pushing impulse `λ_acc ≥ 0` (limits, ropes, later
@@ -120,7 +126,13 @@ impl RowDrive {
     /// (Box2D v3's joint limits.)
     pub fn limit(c: f64, inv_h: f64, softness: Softness) -> RowDrive {
         if c > 0.0 {
-            RowDrive { bias: c * inv_h, mass_scale: 1.0, impulse_scale: 0.0, lower: 0.0, upper: f64::INFINITY }
+            RowDrive {
+                bias: c * inv_h,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+                lower: 0.0,
+                upper: f64::INFINITY,
+            }
         } else {
             RowDrive { lower: 0.0, ..RowDrive::soft(c, softness) }
         }
