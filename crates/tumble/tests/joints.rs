@@ -182,9 +182,10 @@ fn j3_gyroscope_precession() {
     let measured = slope(&times, &azimuths);
     let error = (measured - omega) / omega;
     println!(
-        "J3: precession {measured:.5} rad/s, m g d/(I₃ ω₃) = {omega:.5} rad/s ({:+.3}%), largest dip of the axis {:.2}°, joint error {max_error:.2e} m",
+        "J3: precession {measured:.5} rad/s, m g d/(I₃ ω₃) = {omega:.5} rad/s ({:+.3}%), largest dip of the axis {:.2}°, joint error largest {max_error:.2e} m, final {:.2e} m",
         100.0 * error,
-        max_dip.to_degrees()
+        max_dip.to_degrees(),
+        world.joint_separation(joint).unwrap().length()
     );
     assert!(error.abs() < 0.02, "precession error {:.3}%", 100.0 * error);
 }
