@@ -72,7 +72,7 @@ pub(crate) struct JointPose {
 }
 
 impl JointPose {
-    /// The pose of a joint's frames on two bodies at rest state (for queries outside the step).
+    /// The pose of a joint's frames from the bodies themselves (for queries between steps).
     pub fn from_bodies(
         frame_a_local: &Transform,
         frame_b_local: &Transform,
