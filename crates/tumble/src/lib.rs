@@ -17,7 +17,10 @@ mod step;
 pub mod world;
 
 pub use body::{Body, BodyDef, BodyKind, BodyState};
-pub use dynamics::joint::{BallJoint, Joint, JointDef, JointKind};
+pub use dynamics::joint::{
+    BallJoint, DistanceJoint, FixedJoint, HingeJoint, Joint, JointDef, JointKind, Limits, Motor, SliderJoint,
+    SpringSettings,
+};
 pub use dynamics::solver::SolverSettings;
 pub use dynamics::{Material, SleepSettings};
 pub use id::{BodyId, JointId};

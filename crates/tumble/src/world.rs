@@ -95,6 +95,12 @@ fn check_solver_settings(s: &SolverSettings) -> Result<(), WorldError> {
     if s.substeps == 0 || s.substeps > 1000 {
         return bad(format!("substeps must be between 1 and 1000, got {}", s.substeps));
     }
+    if s.solve_iterations == 0 || s.solve_iterations > 1000 {
+        return bad(format!("solve_iterations must be between 1 and 1000, got {}", s.solve_iterations));
+    }
+    if s.relax_iterations > 1000 {
+        return bad(format!("relax_iterations must be at most 1000, got {}", s.relax_iterations));
+    }
     for (what, v) in [
         ("joint_hertz", s.joint_hertz),
         ("joint_damping_ratio", s.joint_damping_ratio),
@@ -298,9 +304,22 @@ impl World {
         if !axis_len.is_finite() || axis_len < 1e-9 {
             return Err(invalid(format!("axis must be a finite non-zero vector, got {}", def.axis_world)));
         }
-        if let Some(f) = def.break_force {
-            if !f.is_finite() || f <= 0.0 {
-                return Err(invalid(format!("break_force must be finite and > 0, got {f}")));
+        for (what, limit) in [("break_force", def.break_force), ("break_torque", def.break_torque)] {
+            if let Some(f) = limit {
+                if !f.is_finite() || f <= 0.0 {
+                    return Err(invalid(format!("{what} must be finite and > 0, got {f}")));
+                }
+            }
+        }
+        if let Some(anchor_b) = def.anchor_b_world {
+            if !is_finite_vec(anchor_b) {
+                return Err(invalid(format!("anchor_b_world must be finite, got {anchor_b}")));
+            }
+            if !matches!(def.kind, crate::dynamics::joint::JointKind::Distance(_)) {
+                return Err(invalid(format!(
+                    "anchor_b_world is only for distance joints; a {} joint's anchors coincide",
+                    def.kind.name()
+                )));
             }
         }
         if a.kind != BodyKind::Dynamic && b.kind != BodyKind::Dynamic {

@@ -1,9 +1,20 @@
-//! Joint validation: VALIDATION.md J1 onwards.
+//! Joint validation: VALIDATION.md J1–J4 (J5 is in `joint_features.rs`). Each test prints its
+//! measurement next to the analytic value.
 
-use tumble::{BallJoint, BodyDef, BodyKind, DVec3, JointDef, JointKind, Shape, Sphere, World};
+use std::f64::consts::{PI, TAU};
+use tumble::{
+    BallJoint, BodyDef, BodyId, BodyKind, Capsule, Cuboid, Cylinder, DQuat, DVec3, HingeJoint, JointDef,
+    JointKind, Shape, SolverSettings, Sphere, World, WorldDef,
+};
 
 mod common;
-use common::sign_changes;
+use common::{mean_interval, sign_changes, slope};
+
+fn static_body(world: &mut World, position: DVec3) -> BodyId {
+    world
+        .add_body(BodyDef { name: "ground".into(), kind: BodyKind::Static, position, ..Default::default() })
+        .unwrap()
+}
 
 /// J1: a ball-joint pendulum of length 1 m swinging at 5° has the period 2π√(L/g) within 0.5%, and
 /// within 0.1% once corrected for amplitude (T = T₀(1 + θ₀²/16)) and the bob's own inertia; the
@@ -63,4 +74,217 @@ fn j1_ball_joint_pendulum_period() {
     assert!(((period - simple) / simple).abs() < 0.005);
     assert!(((period - corrected) / corrected).abs() < 0.001);
     assert!(max_error < 1e-4, "joint separation {max_error} m");
+}
+
+/// J2: a rod (box 0.05 × 0.05 × 1 m) hanging from a hinge at its top end swings with the period
+/// of the compound pendulum `2π√(I_pivot/(m g d))` within 0.5% (3° amplitude).
+#[test]
+fn j2_compound_pendulum_period() {
+    let mut world = World::default();
+    let g = 9.81;
+    let (width, length) = (0.05, 1.0);
+    let pivot_point = DVec3::new(0.0, 0.0, 2.0);
+    let pivot = static_body(&mut world, pivot_point);
+    let theta0 = 3.0_f64.to_radians();
+    let orientation = DQuat::from_rotation_y(theta0);
+    let rod = world
+        .add_body(BodyDef {
+            name: "rod".into(),
+            shape: Some(Shape::Cuboid(
+                Cuboid::new(DVec3::new(width / 2.0, width / 2.0, length / 2.0)).unwrap(),
+            )),
+            position: pivot_point + orientation * DVec3::new(0.0, 0.0, -length / 2.0),
+            orientation,
+            ..Default::default()
+        })
+        .unwrap();
+    let hinge =
+        JointDef::new(pivot, rod, pivot_point, JointKind::Hinge(HingeJoint::default())).with_axis(DVec3::Y);
+    let joint = world.add_joint(hinge).unwrap();
+
+    let dt = 1.0 / 60.0;
+    let (mut times, mut xs) = (vec![], vec![]);
+    let mut max_error: f64 = 0.0;
+    for n in 1..=1800 {
+        world.step(dt).unwrap();
+        times.push(f64::from(n) * dt);
+        xs.push(world.body(rod).unwrap().com_world().x);
+        max_error = max_error.max(world.joint_separation(joint).unwrap().length());
+    }
+    let period = 2.0 * mean_interval(&sign_changes(&times, &xs));
+    // Box about its centre, axis along y: m (w² + L²)/12; parallel axis to the end: + m (L/2)².
+    let d = length / 2.0;
+    let i_pivot_over_m = (width * width + length * length) / 12.0 + d * d;
+    let analytic = TAU * (i_pivot_over_m / (g * d)).sqrt();
+    let corrected = analytic * (1.0 + theta0 * theta0 / 16.0);
+    let error = (period - analytic) / analytic;
+    println!(
+        "J2: period {period:.5} s, 2π√(I/(mgd)) = {analytic:.5} s ({:+.3}%), amplitude-corrected {corrected:.5} s ({:+.3}%), joint error {max_error:.2e} m",
+        100.0 * error,
+        100.0 * (period - corrected) / corrected
+    );
+    assert!(error.abs() < 0.005, "period error {:.3}%", 100.0 * error);
+    assert!(max_error < 1e-4, "joint separation {max_error} m");
+}
+
+/// J3: a disc spinning fast about its symmetry axis, held horizontal by a ball joint on that axis
+/// at distance d from its centre, precesses at `Ω = m g d / (I₃ ω₃)` within 2%. The disc starts
+/// with the precession already under way (so there is little nutation); Ω is the slope of the
+/// centre's azimuth about the pivot.
+#[test]
+fn j3_gyroscope_precession() {
+    let mut world = World::default();
+    let g = 9.81;
+    let (radius, half_height, d, spin) = (0.2, 0.02, 0.2, 150.0);
+    let pivot_point = DVec3::new(0.0, 0.0, 1.0);
+    let pivot = static_body(&mut world, pivot_point);
+    // Axis-horizontal top at θ = 90°: steady precession needs m g d = I₃ ω₃ Ω exactly (the Ω² term
+    // of the heavy top carries cos θ).
+    let i3_over_m = 0.5 * radius * radius;
+    let omega = g * d / (i3_over_m * spin);
+    let center = pivot_point + DVec3::new(d, 0.0, 0.0);
+    let disc = world
+        .add_body(BodyDef {
+            name: "disc".into(),
+            shape: Some(Shape::Cylinder(Cylinder::new(radius, half_height).unwrap())),
+            position: center,
+            // The cylinder's axis is its local Z; turn it onto world X.
+            orientation: DQuat::from_rotation_arc(DVec3::Z, DVec3::X),
+            angular_velocity: DVec3::new(spin, 0.0, omega),
+            linear_velocity: DVec3::new(0.0, omega * d, 0.0),
+            ..Default::default()
+        })
+        .unwrap();
+    let joint = world
+        .add_joint(
+            JointDef::new(pivot, disc, pivot_point, JointKind::Ball(BallJoint::new())).with_axis(DVec3::X),
+        )
+        .unwrap();
+
+    let dt = 1.0 / 60.0;
+    let (mut times, mut azimuths) = (vec![], vec![]);
+    let (mut previous, mut unwrapped) = (0.0_f64, 0.0_f64);
+    let (mut max_error, mut max_dip): (f64, f64) = (0.0, 0.0);
+    for n in 1..=300 {
+        world.step(dt).unwrap();
+        let r = world.body(disc).unwrap().com_world() - pivot_point;
+        let azimuth = r.y.atan2(r.x);
+        unwrapped += (azimuth - previous + PI).rem_euclid(TAU) - PI;
+        previous = azimuth;
+        let t = f64::from(n) * dt;
+        max_error = max_error.max(world.joint_separation(joint).unwrap().length());
+        max_dip = max_dip.max((r.z / d).asin().abs());
+        if t >= 0.5 {
+            times.push(t);
+            azimuths.push(unwrapped);
+        }
+    }
+    let measured = slope(&times, &azimuths);
+    let error = (measured - omega) / omega;
+    println!(
+        "J3: precession {measured:.5} rad/s, m g d/(I₃ ω₃) = {omega:.5} rad/s ({:+.3}%), largest dip of the axis {:.2}°, joint error largest {max_error:.2e} m, final {:.2e} m",
+        100.0 * error,
+        max_dip.to_degrees(),
+        world.joint_separation(joint).unwrap().length()
+    );
+    assert!(error.abs() < 0.02, "precession error {:.3}%", 100.0 * error);
+}
+
+/// A hanging chain of 20 capsules on ball joints with a weight of 100 link masses at the end,
+/// nudged sideways; returns the largest joint separation at the end of 10 s.
+/// (final largest separation, largest over the last 2 s, largest joint index at the end)
+fn heavy_chain(settings: SolverSettings, nudge: f64) -> (f64, f64, usize) {
+    let mut world = World::new(WorldDef { solver: settings, ..Default::default() }).unwrap();
+    let (links, radius, half_height) = (20, 0.05, 0.2);
+    let link_length = 2.0 * (half_height + radius);
+    let top = DVec3::new(0.0, 0.0, 12.0);
+    let ceiling = static_body(&mut world, top);
+    let mut previous = ceiling;
+    let mut joints = vec![];
+    let mut link_mass = 0.0;
+    for i in 0..links {
+        let anchor = top - DVec3::Z * (link_length * f64::from(i));
+        let link = world
+            .add_body(BodyDef {
+                name: format!("link {i}"),
+                shape: Some(Shape::Capsule(Capsule::new(radius, half_height).unwrap())),
+                position: anchor - DVec3::Z * (link_length / 2.0),
+                ..Default::default()
+            })
+            .unwrap();
+        link_mass = world.body(link).unwrap().mass();
+        joints.push(
+            world
+                .add_joint(JointDef::new(previous, link, anchor, JointKind::Ball(BallJoint::new())))
+                .unwrap(),
+        );
+        previous = link;
+    }
+    let bottom = top - DVec3::Z * (link_length * f64::from(links));
+    let weight_radius = 0.2;
+    let weight = world
+        .add_body(BodyDef {
+            name: "weight".into(),
+            shape: Some(Shape::Sphere(Sphere::new(weight_radius).unwrap())),
+            mass: Some(100.0 * link_mass),
+            position: bottom - DVec3::Z * weight_radius,
+            linear_velocity: DVec3::new(nudge, 0.0, 0.0),
+            ..Default::default()
+        })
+        .unwrap();
+    joints.push(
+        world.add_joint(JointDef::new(previous, weight, bottom, JointKind::Ball(BallJoint::new()))).unwrap(),
+    );
+
+    let largest = |world: &World| {
+        joints
+            .iter()
+            .enumerate()
+            .map(|(i, &j)| (world.joint_separation(j).unwrap().length(), i))
+            .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a })
+    };
+    let mut late: f64 = 0.0;
+    for n in 0..600 {
+        world.step(1.0 / 60.0).unwrap();
+        if n >= 480 {
+            late = late.max(largest(&world).0);
+        }
+    }
+    let (last, index) = largest(&world);
+    (last, late, index)
+}
+
+/// J4: the heavy chain stays together to 1 mm after 10 s at dt = 1/60.
+///
+/// A soft joint is a spring of stiffness `k = m_eff ω²` (ω = 2π·joint_hertz, `m_eff` the point
+/// rows' effective mass along the chain: `m/2` between two links). Warm starting converges the
+/// impulses, so the chain settles at that spring's equilibrium: joint 1 carries 19 links and the
+/// weight, `F = 119 m g`, and stretches by `F/(m_eff ω²) = 238 g/ω²` — 16 mm at the default
+/// 60 Hz, however many iterations are run. Only stiffness helps, and a soft step stays stable on
+/// this mass ratio only while `ωh ≲ π/2` (the chain diverges at `ωh = π`), so `joint_hertz` is
+/// capped at a quarter of the substep rate: the stretch is at best `238 g (2h/π)²`. 1 mm needs
+/// `h ≤ 1/1100 s`: 20 substeps with `joint_hertz` 300 Hz give 0.66 mm.
+#[test]
+fn j4_heavy_chain_holds_together() {
+    let g = 9.81;
+    let predicted = |hertz: f64| 238.0 * g / (TAU * hertz).powi(2);
+    let defaults = SolverSettings::default();
+    let (default_end, default_late, _) = heavy_chain(defaults.clone(), 0.3);
+    let stiff = SolverSettings { substeps: 20, joint_hertz: 300.0, ..Default::default() };
+    let (stiff_end, stiff_late, index) = heavy_chain(stiff.clone(), 0.3);
+    println!(
+        "J4: largest joint separation at 10 s: defaults ({} substeps, {} Hz) {:.3} mm (last 2 s: {:.3} mm; soft equilibrium 238 g/ω² = {:.3} mm); {} substeps, {} Hz: {:.3} mm at joint {index} (last 2 s: {:.3} mm; equilibrium {:.3} mm)",
+        defaults.substeps,
+        defaults.joint_hertz,
+        1e3 * default_end,
+        1e3 * default_late,
+        1e3 * predicted(defaults.joint_hertz),
+        stiff.substeps,
+        stiff.joint_hertz,
+        1e3 * stiff_end,
+        1e3 * stiff_late,
+        1e3 * predicted(stiff.joint_hertz),
+    );
+    assert!(default_late < 0.05, "defaults must at least hold together: {default_late} m");
+    assert!(stiff_end < 1e-3, "separation {stiff_end} m");
 }

@@ -65,7 +65,11 @@ impl ContactManager {
             .into_iter()
             .enumerate()
             .map(|(i, (leaf, local))| {
-                self.broad_phase.create_proxy(shape_aabb(leaf, &pose.mul_transform(&local)), kind, pack(slot, i))
+                self.broad_phase.create_proxy(
+                    shape_aabb(leaf, &pose.mul_transform(&local)),
+                    kind,
+                    pack(slot, i),
+                )
             })
             .collect();
     }
@@ -106,7 +110,8 @@ impl ContactManager {
             if slot_a == slot_b {
                 continue;
             }
-            let (Some((id_a, a)), Some((id_b, b))) = (slot_body(bodies, slot_a), slot_body(bodies, slot_b)) else {
+            let (Some((id_a, a)), Some((id_b, b))) = (slot_body(bodies, slot_a), slot_body(bodies, slot_b))
+            else {
                 continue;
             };
             if a.kind != BodyKind::Dynamic && b.kind != BodyKind::Dynamic {
@@ -140,11 +145,13 @@ impl ContactManager {
     pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64) {
         let broad_phase = &self.broad_phase;
         self.contacts.retain(|_, contact| {
-            let overlap: bool = broad_phase.fat_aabb(contact.proxy_a).overlaps(&broad_phase.fat_aabb(contact.proxy_b));
+            let overlap: bool =
+                broad_phase.fat_aabb(contact.proxy_a).overlaps(&broad_phase.fat_aabb(contact.proxy_b));
             if !overlap {
                 return false;
             }
-            let (Some(a), Some(b)) = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into())) else {
+            let (Some(a), Some(b)) = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into()))
+            else {
                 return false;
             };
             if !a.is_awake() && !b.is_awake() {

@@ -118,7 +118,8 @@ impl ContactConstraint {
         material: ContactMaterial,
         ctx: &StepContext,
     ) -> ContactConstraint {
-        let hertz = if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
+        let hertz =
+            if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
         let gravity = ctx.gravity.length();
         let (qa_inv, qb_inv) = (a.q.inverse(), b.q.inverse());
         let mut constraint = ContactConstraint {

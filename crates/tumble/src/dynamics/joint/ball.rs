@@ -1,15 +1,66 @@
-//! Ball-and-socket joint: the two anchors coincide (three point rows); rotation is free.
+//! Ball-and-socket joint: the anchors coincide (three point rows); rotation is free, optionally
+//! within a cone (swing limit) and a twist range about the joint axis.
+//!
+//! The limits use the swing–twist decomposition of the relative rotation (`frames.rs`):
+//!
+//! * **Swing** `θ = ∠(z_a, z_b)`, the angle between the two frames' Z axes. From
+//!   `cos θ = z_a·z_b` and `d/dt (z_a·z_b) = (ω_b − ω_a)·(z_b × z_a)`,
+//!   `θ̇ = (ω_b − ω_a)·n` with `n = (z_a × z_b)/|z_a × z_b|`: an angular row about `n` keeping
+//!   `C = θ_max − θ ≥ 0` (Jacobian axis `−n`). At `θ = 0` the axis is undefined, but the cone is
+//!   then far from its edge and the row is skipped.
+//! * **Twist** `φ = 2·atan2(q_z, q_w)` of `q = F_a⁻¹ F_b`. Its rate is `(ω_b − ω_a)` about the
+//!   half-way axis `(z_a + z_b)/|z_a + z_b|` (exact without swing, and the usual choice with it,
+//!   as in Jolt's swing–twist part): rows `φ − lower ≥ 0` and `upper − φ ≥ 0`.
 
-use super::parts::PointPart;
-use super::JointFrame;
+use super::frames::JointPose;
+use super::hard_softness;
+use super::parts::{AngularAxisPart, PointPart, RowDrive};
+use super::settings::{check_angle_limits, Limits};
 use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
+use std::f64::consts::{FRAC_PI_2, PI};
 
-/// Settings of a ball joint (none yet beyond the anchor), and its solver state.
-#[derive(Clone, Debug, Default)]
+/// Settings of a ball joint.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct BallJoint {
+    /// Largest angle between the joint axes of the two bodies (the cone's half-angle), rad, in
+    /// `[0, π]`. `None`: free.
+    pub swing_limit: Option<f64>,
+    /// Range of the twist of body b about the joint axis relative to body a, rad, within
+    /// `[−π, π]`. `None`: free.
+    pub twist_limits: Option<Limits>,
+}
+
+/// Solver state of a ball joint.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct BallParts {
     point: PointPart,
+    swing: AngularAxisPart,
+    twist_lower: AngularAxisPart,
+    twist_upper: AngularAxisPart,
+}
+
+/// The swing row now: its Jacobian axis and `C = θ_max − θ`, or `None` when the axes are aligned.
+fn swing_row(pose: &JointPose, half_angle: f64) -> Option<(DVec3, f64)> {
+    let (z_a, z_b) = (pose.axis_a(), pose.axis_b());
+    let normal = z_a.cross(z_b);
+    let sin = normal.length();
+    let theta = sin.atan2(z_a.dot(z_b));
+    let n = if sin > 1e-9 {
+        normal / sin
+    } else if theta > FRAC_PI_2 {
+        // Turned right over: any perpendicular axis brings it back.
+        z_a.any_orthonormal_vector()
+    } else {
+        return None;
+    };
+    Some((-n, half_angle - theta))
+}
+
+/// The twist rows' axis now (half-way between the two joint axes).
+fn twist_axis(pose: &JointPose) -> Option<DVec3> {
+    (pose.axis_a() + pose.axis_b()).try_normalize()
 }
 
 impl BallJoint {
@@ -17,33 +68,78 @@ impl BallJoint {
         BallJoint::default()
     }
 
-    pub(crate) fn prepare(&mut self, a: JointFrame, b: JointFrame, delta_center: DVec3, _ctx: &StepContext) {
-        let part = &mut self.point;
-        part.r_a_local = a.r_local;
-        part.r_b_local = b.r_local;
-        part.delta_center = delta_center;
+    pub(crate) fn validate(&self) -> Result<(), String> {
+        if let Some(half_angle) = self.swing_limit {
+            if !(0.0..=PI).contains(&half_angle) {
+                return Err(format!("ball swing_limit must be within [0, pi], got {half_angle}"));
+            }
+        }
+        if let Some(limits) = &self.twist_limits {
+            check_angle_limits("ball twist_limits", limits)?;
+        }
+        Ok(())
     }
 
-    pub(crate) fn reset_impulses(&mut self) {
-        self.point.impulse = DVec3::ZERO;
-    }
-
-    pub(crate) fn warm_start(&mut self, a: &mut SolverBody, b: &mut SolverBody) {
-        self.point.warm_start(a, b);
+    pub(crate) fn warm_start(
+        &self,
+        parts: &BallParts,
+        pose: &JointPose,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
+        if let Some(half_angle) = self.swing_limit {
+            if let Some((axis, _)) = swing_row(pose, half_angle) {
+                parts.swing.warm_start(a, b, axis);
+            }
+        }
+        if self.twist_limits.is_some() {
+            if let Some(axis) = twist_axis(pose) {
+                parts.twist_lower.warm_start(a, b, axis);
+                parts.twist_upper.warm_start(a, b, -axis);
+            }
+        }
+        parts.point.warm_start(a, b, pose.r_a, pose.r_b);
     }
 
     pub(crate) fn solve(
-        &mut self,
+        &self,
+        parts: &mut BallParts,
+        pose: &JointPose,
         a: &mut SolverBody,
         b: &mut SolverBody,
         ctx: &StepContext,
         use_bias: bool,
     ) {
-        let softness = if use_bias { ctx.joint_softness } else { crate::dynamics::Softness::RIGID_VELOCITY };
-        self.point.solve(a, b, softness);
+        let softness = hard_softness(ctx, use_bias);
+        if let Some(half_angle) = self.swing_limit {
+            match swing_row(pose, half_angle) {
+                Some((axis, c)) => parts.swing.solve(a, b, axis, RowDrive::limit(c, ctx.inv_h, softness)),
+                None => parts.swing.impulse = 0.0,
+            }
+        }
+        if let Some(limits) = &self.twist_limits {
+            match twist_axis(pose) {
+                Some(axis) => {
+                    let twist = pose.twist_angle();
+                    let lower = RowDrive::limit(twist - limits.lower, ctx.inv_h, softness);
+                    parts.twist_lower.solve(a, b, axis, lower);
+                    let upper = RowDrive::limit(limits.upper - twist, ctx.inv_h, softness);
+                    parts.twist_upper.solve(a, b, -axis, upper);
+                }
+                None => {
+                    parts.twist_lower.impulse = 0.0;
+                    parts.twist_upper.impulse = 0.0;
+                }
+            }
+        }
+        // The point rows last: holding the joint together matters most.
+        parts.point.solve(a, b, pose.r_a, pose.r_b, pose.separation, softness);
     }
 
-    pub(crate) fn linear_impulse(&self) -> DVec3 {
-        self.point.impulse
+    /// Magnitudes of the accumulated (per-substep) linear and angular impulses.
+    pub(crate) fn impulses(parts: &BallParts) -> (f64, f64) {
+        let angular =
+            parts.swing.impulse.abs() + (parts.twist_lower.impulse - parts.twist_upper.impulse).abs();
+        (parts.point.impulse.length(), angular)
     }
 }

@@ -1,39 +1,131 @@
-//! Joints: constraints between two bodies, built from the parts in `parts.rs`.
+//! Joints: constraints between two bodies, assembled from the parts in `parts/`.
 //!
 //! A joint is defined in world terms at creation (an anchor point and an axis) and stored as a
 //! frame in each body: `frame_a_local` / `frame_b_local` have their origin at the anchor and their
 //! Z axis along the joint axis. Joints are rows of the same soft-step solve as contacts.
+//!
+//! | kind | rows | file |
+//! |---|---|---|
+//! | ball | point (3) + optional swing cone and twist limits | `ball.rs` |
+//! | hinge | point (3) + hinge rotation (2) + optional limits, motor, spring | `hinge.rs` |
+//! | slider | rotation (3) + 2 perpendicular rows + optional limits, motor, spring | `slider.rs` |
+//! | fixed | point (3) + rotation (3) | `fixed.rs` |
+//! | distance | 1 row along the anchors' line: rigid, spring, min/max (rope) | `distance.rs` |
+//!
+//! The settings (`JointKind`, public) are kept apart from the solver state (`JointParts`,
+//! crate-private: accumulated impulses), so users fill settings with `..Default::default()`.
+//!
+//! Within a joint, the optional rows (spring, motor, limits) are solved first and the rows that
+//! hold the joint together last, so the last word goes to what matters most (Box2D's order).
 
 mod ball;
+mod distance;
+mod fixed;
+pub(crate) mod frames;
+mod hinge;
 pub(crate) mod parts;
+mod queries;
+mod settings;
+mod slider;
 
 pub use ball::BallJoint;
+pub use distance::DistanceJoint;
+pub use fixed::FixedJoint;
+pub use hinge::HingeJoint;
+pub use settings::{Limits, Motor, SpringSettings};
+pub use slider::SliderJoint;
 
 use crate::body::Body;
+use crate::dynamics::softness::Softness;
 use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
 use crate::id::BodyId;
 use crate::math::{DQuat, DVec3, Transform};
+use frames::{JointFrames, JointPose};
 
 /// The kind of a joint and its settings.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum JointKind {
-    /// Ball-and-socket: the anchor points coincide; rotation is free.
+    /// Ball-and-socket: the anchor points coincide; rotation is free (optionally limited).
     Ball(BallJoint),
+    /// Hinge (revolute): one rotation about the joint axis.
+    Hinge(HingeJoint),
+    /// Slider (prismatic): one translation along the joint axis, no rotation.
+    Slider(SliderJoint),
+    /// Fixed (weld): no relative motion.
+    Fixed(FixedJoint),
+    /// Distance: the anchors stay at a distance (rigid, spring, rope).
+    Distance(DistanceJoint),
 }
 
 impl JointKind {
     pub fn name(&self) -> &'static str {
         match self {
             JointKind::Ball(_) => "ball",
+            JointKind::Hinge(_) => "hinge",
+            JointKind::Slider(_) => "slider",
+            JointKind::Fixed(_) => "fixed",
+            JointKind::Distance(_) => "distance",
         }
     }
 
-    /// Checks the settings (limits ordered, positive frequencies, …); the message says which.
+    /// Checks the settings (limits ordered, frequencies and forces >= 0, all finite); the
+    /// message says which setting and what it was.
     pub(crate) fn validate(&self) -> Result<(), String> {
         match self {
-            JointKind::Ball(_) => Ok(()),
+            JointKind::Ball(j) => j.validate(),
+            JointKind::Hinge(j) => j.validate(),
+            JointKind::Slider(j) => j.validate(),
+            JointKind::Fixed(_) => Ok(()),
+            JointKind::Distance(j) => j.validate(),
         }
+    }
+}
+
+/// The solver state of a joint: the accumulated impulses of its parts.
+#[derive(Clone, Debug)]
+pub(crate) enum JointParts {
+    Ball(ball::BallParts),
+    Hinge(hinge::HingeParts),
+    Slider(slider::SliderParts),
+    Fixed(fixed::FixedParts),
+    Distance(distance::DistanceParts),
+}
+
+impl JointParts {
+    fn for_kind(kind: &JointKind) -> JointParts {
+        match kind {
+            JointKind::Ball(_) => JointParts::Ball(Default::default()),
+            JointKind::Hinge(_) => JointParts::Hinge(Default::default()),
+            JointKind::Slider(_) => JointParts::Slider(Default::default()),
+            JointKind::Fixed(_) => JointParts::Fixed(Default::default()),
+            JointKind::Distance(_) => JointParts::Distance(Default::default()),
+        }
+    }
+}
+
+/// Matches a joint's settings with its parts (always made together, so always the same kind).
+macro_rules! with_parts {
+    ($kind:expr, $parts:expr, |$s:ident, $p:ident| $body:expr) => {
+        match ($kind, $parts) {
+            (JointKind::Ball($s), JointParts::Ball($p)) => $body,
+            (JointKind::Hinge($s), JointParts::Hinge($p)) => $body,
+            (JointKind::Slider($s), JointParts::Slider($p)) => $body,
+            (JointKind::Fixed($s), JointParts::Fixed($p)) => $body,
+            (JointKind::Distance($s), JointParts::Distance($p)) => $body,
+            _ => unreachable!("a joint's parts are made for its kind"),
+        }
+    };
+}
+
+/// The softness of the rows that hold a joint together: the joint softness in the solve pass,
+/// rigid and without position bias in the relax pass.
+#[inline]
+pub(crate) fn hard_softness(ctx: &StepContext, use_bias: bool) -> Softness {
+    if use_bias {
+        ctx.joint_softness
+    } else {
+        Softness::RIGID_VELOCITY
     }
 }
 
@@ -45,13 +137,19 @@ pub struct JointDef {
     pub body_b: BodyId,
     /// The anchor point, world frame, at creation.
     pub anchor_world: DVec3,
-    /// The joint axis (hinge axis, slider direction, cone axis), world frame, at creation.
+    /// The anchor on body b, world frame, when it differs from `anchor_world` (distance joints
+    /// only; the other joints start with coinciding anchors).
+    pub anchor_b_world: Option<DVec3>,
+    /// The joint axis (hinge axis, slider direction, cone and twist axis), world frame, at
+    /// creation.
     pub axis_world: DVec3,
     pub kind: JointKind,
-    /// The joint breaks (and stops acting) when its constraint force exceeds this, N.
+    /// The joint breaks (and stops acting) when its linear constraint force exceeds this, N.
     pub break_force: Option<f64>,
     /// Whether the two jointed bodies still collide with each other. Default false.
     pub collide_connected: bool,
+    /// The joint breaks when its angular constraint torque exceeds this, N·m.
+    pub break_torque: Option<f64>,
 }
 
 impl JointDef {
@@ -61,11 +159,23 @@ impl JointDef {
             body_a,
             body_b,
             anchor_world,
+            anchor_b_world: None,
             axis_world: DVec3::Z,
             kind,
             break_force: None,
             collide_connected: false,
+            break_torque: None,
         }
+    }
+
+    /// The same definition with a name.
+    pub fn named(self, name: &str) -> JointDef {
+        JointDef { name: name.into(), ..self }
+    }
+
+    /// The same definition with the joint axis `axis_world`.
+    pub fn with_axis(self, axis_world: DVec3) -> JointDef {
+        JointDef { axis_world, ..self }
     }
 }
 
@@ -82,7 +192,16 @@ pub struct Joint {
     pub(crate) kind: JointKind,
     pub(crate) break_force: Option<f64>,
     pub(crate) collide_connected: bool,
+    pub(crate) break_torque: Option<f64>,
     pub(crate) broken: bool,
+    /// Set by the solver each step: false when neither body can move (both asleep or fixed), so
+    /// the joint is skipped and keeps its impulses and forces.
+    pub(crate) solving: bool,
+    /// Constraint force and torque magnitudes over the last step, N and N·m.
+    pub(crate) force: f64,
+    pub(crate) torque: f64,
+    pub(crate) frames: JointFrames,
+    pub(crate) parts: JointParts,
 }
 
 /// The rotation taking Z to `axis` (unit), by the shortest arc.
@@ -92,17 +211,32 @@ pub(crate) fn rotation_z_to(axis: DVec3) -> DQuat {
 
 impl Joint {
     pub(crate) fn new(def: &JointDef, a: &Body, b: &Body) -> Joint {
-        let frame_world = Transform::new(def.anchor_world, rotation_z_to(def.axis_world.normalize()));
+        let rotation = rotation_z_to(def.axis_world.normalize());
+        let frame_a_world = Transform::new(def.anchor_world, rotation);
+        let anchor_b_world = def.anchor_b_world.unwrap_or(def.anchor_world);
+        let frame_b_world = Transform::new(anchor_b_world, rotation);
+        let kind = match &def.kind {
+            JointKind::Distance(j) => {
+                JointKind::Distance(j.resolved(anchor_b_world.distance(def.anchor_world)))
+            }
+            other => other.clone(),
+        };
         Joint {
             name: def.name.clone(),
             body_a: def.body_a,
             body_b: def.body_b,
-            frame_a_local: a.transform().inverse().mul_transform(&frame_world),
-            frame_b_local: b.transform().inverse().mul_transform(&frame_world),
-            kind: def.kind.clone(),
+            frame_a_local: a.transform().inverse().mul_transform(&frame_a_world),
+            frame_b_local: b.transform().inverse().mul_transform(&frame_b_world),
+            parts: JointParts::for_kind(&kind),
+            kind,
             break_force: def.break_force,
             collide_connected: def.collide_connected,
+            break_torque: def.break_torque,
             broken: false,
+            solving: false,
+            force: 0.0,
+            torque: 0.0,
+            frames: JointFrames::default(),
         }
     }
 
@@ -115,12 +249,22 @@ impl Joint {
     pub fn body_b(&self) -> BodyId {
         self.body_b
     }
+    /// The settings (for a distance joint, with `length` resolved at creation).
     pub fn kind(&self) -> &JointKind {
         &self.kind
     }
-    /// True once the constraint force exceeded `break_force`; a broken joint no longer acts.
+    /// True once the constraint force or torque exceeded its break limit; a broken joint no
+    /// longer acts.
     pub fn is_broken(&self) -> bool {
         self.broken
+    }
+    /// Magnitude of the linear constraint force over the last step, N.
+    pub fn constraint_force(&self) -> f64 {
+        self.force
+    }
+    /// Magnitude of the angular constraint torque over the last step, N·m.
+    pub fn constraint_torque(&self) -> f64 {
+        self.torque
     }
 
     /// The anchor on body a, world frame.
@@ -133,29 +277,28 @@ impl Joint {
         b.transform().transform_point(self.frame_b_local.translation)
     }
 
-    /// Stage "prepare": anchors relative to the centres of mass, the step-start separation.
-    pub(crate) fn prepare(&mut self, a: &Body, b: &Body, ctx: &StepContext) {
-        let frame_a = JointFrame::new(&self.frame_a_local, a);
-        let frame_b = JointFrame::new(&self.frame_b_local, b);
-        let delta_center = b.com_world() - a.com_world();
-        match &mut self.kind {
-            JointKind::Ball(j) => j.prepare(frame_a, frame_b, delta_center, ctx),
-        }
+    /// Both joint frames now, from the bodies.
+    pub(crate) fn pose(&self, a: &Body, b: &Body) -> JointPose {
+        JointPose::from_bodies(&self.frame_a_local, &self.frame_b_local, a, b)
+    }
+
+    /// Stage "prepare": the frames relative to the centres of mass and the step-start offsets.
+    pub(crate) fn prepare(&mut self, a: &Body, b: &Body, _ctx: &StepContext) {
+        self.frames = JointFrames::new(&self.frame_a_local, &self.frame_b_local, a, b);
     }
 
     /// Forgets the accumulated impulses (no warm start).
     pub(crate) fn reset_impulses(&mut self) {
-        match &mut self.kind {
-            JointKind::Ball(j) => j.reset_impulses(),
-        }
+        self.parts = JointParts::for_kind(&self.kind);
     }
 
+    /// Stage "warm start": applies the accumulated impulses with the current geometry.
     pub(crate) fn warm_start(&mut self, a: &mut SolverBody, b: &mut SolverBody) {
-        match &mut self.kind {
-            JointKind::Ball(j) => j.warm_start(a, b),
-        }
+        let pose = self.frames.pose(a, b);
+        with_parts!(&self.kind, &self.parts, |settings, parts| settings.warm_start(parts, &pose, a, b))
     }
 
+    /// Stage "solve" (`use_bias`) or "relax" (`!use_bias`).
     pub(crate) fn solve(
         &mut self,
         a: &mut SolverBody,
@@ -163,33 +306,28 @@ impl Joint {
         ctx: &StepContext,
         use_bias: bool,
     ) {
-        match &mut self.kind {
-            JointKind::Ball(j) => j.solve(a, b, ctx, use_bias),
-        }
+        let pose = self.frames.pose(a, b);
+        with_parts!(&self.kind, &mut self.parts, |settings, parts| {
+            settings.solve(parts, &pose, a, b, ctx, use_bias)
+        })
     }
 
-    /// The magnitude of the constraint force over the last step (linear impulse / dt), N.
-    pub(crate) fn linear_force(&self, ctx: &StepContext) -> f64 {
-        match &self.kind {
-            JointKind::Ball(j) => j.linear_impulse().length() * ctx.inv_dt,
-        }
-    }
-}
-
-/// A joint frame expressed relative to the body's centre of mass, body axes.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct JointFrame {
-    /// Anchor offset from the centre of mass, body frame.
-    pub r_local: DVec3,
-    /// Orientation of the joint frame in the body frame.
-    pub rotation_local: DQuat,
-}
-
-impl JointFrame {
-    fn new(frame_local: &Transform, body: &Body) -> JointFrame {
-        JointFrame {
-            r_local: frame_local.translation - body.com_local(),
-            rotation_local: frame_local.rotation,
+    /// Stage "store impulses": the constraint force and torque of the step and joint breaking.
+    /// Accumulated impulses are re-applied in every substep's warm start, so they are impulses
+    /// *per substep*: force = impulse / h.
+    pub(crate) fn store(&mut self, ctx: &StepContext) {
+        let (linear, angular) = match &self.parts {
+            JointParts::Ball(p) => BallJoint::impulses(p),
+            JointParts::Hinge(p) => HingeJoint::impulses(p),
+            JointParts::Slider(p) => SliderJoint::impulses(p),
+            JointParts::Fixed(p) => FixedJoint::impulses(p),
+            JointParts::Distance(p) => DistanceJoint::impulses(p),
+        };
+        self.force = linear * ctx.inv_h;
+        self.torque = angular * ctx.inv_h;
+        let over = |limit: Option<f64>, value: f64| limit.is_some_and(|l| value > l);
+        if over(self.break_force, self.force) || over(self.break_torque, self.torque) {
+            self.broken = true;
         }
     }
 }
