@@ -109,7 +109,7 @@ impl World {
     /// changes. Give `shape` with `density` (kg/m³) or `mass` (kg), or `mass_properties`.
     #[pyo3(signature = (shape = None, *, density = 1000.0, mass = None, mass_properties = None,
         position = None, orientation = None, linear_velocity = None, angular_velocity = None,
-        kind = "dynamic", name = String::new(), linear_damping = 0.0, angular_damping = 0.0,
+        kind = "dynamic", name = "", linear_damping = 0.0, angular_damping = 0.0,
         gravity_scale = 1.0, allow_sleep = true))]
     #[allow(clippy::too_many_arguments)]
     fn add_body(
@@ -123,7 +123,7 @@ impl World {
         linear_velocity: Option<&Bound<'_, PyAny>>,
         angular_velocity: Option<&Bound<'_, PyAny>>,
         kind: &str,
-        name: String,
+        name: &str,
         linear_damping: f64,
         angular_damping: f64,
         gravity_scale: f64,
@@ -139,7 +139,7 @@ impl World {
             linear_velocity,
             angular_velocity,
             kind,
-            name,
+            name: name.to_string(),
             linear_damping,
             angular_damping,
             gravity_scale,
@@ -183,16 +183,21 @@ impl World {
     // ---- joints ---------------------------------------------------------------------------------
 
     /// Ball-and-socket joint: bodies `a` and `b` share the world point `anchor` (at creation).
-    #[pyo3(signature = (a, b, anchor, *, name = String::new(), break_force = None))]
+    #[pyo3(signature = (a, b, anchor, *, name = "", break_force = None))]
     fn add_ball_joint(
         &mut self,
         a: BodyId,
         b: BodyId,
         anchor: &Bound<'_, PyAny>,
-        name: String,
+        name: &str,
         break_force: Option<f64>,
     ) -> PyResult<JointId> {
-        let def = joints::ball_def(a, b, vec3(anchor, "anchor")?, CommonArgs { name, break_force });
+        let def = joints::ball_def(
+            a,
+            b,
+            vec3(anchor, "anchor")?,
+            CommonArgs { name: name.to_string(), break_force },
+        );
         Ok(JointId(self.inner.add_joint(def).py()?))
     }
 

@@ -85,3 +85,25 @@ def test_step_many_rejects_duplicates_and_non_worlds():
     np.testing.assert_array_equal(w.positions, before)
     tumble.step_many([w], 1 / 60, n=2)  # still usable: the borrows were released
     assert w.step_count == 2
+
+
+def test_touching_a_stepping_world_from_another_thread_raises():
+    w = chain_world()
+    errors = []
+
+    def run():
+        w.step(1 / 240, n=3000)
+
+    thread = threading.Thread(target=run)
+    thread.start()
+    while thread.is_alive():
+        try:
+            w.positions
+        except RuntimeError as e:  # borrowed by the stepping thread: an error, never a race
+            errors.append(e)
+            break
+        time.sleep(0.001)
+    thread.join()
+    assert errors, "the step finished before it could be observed"
+    assert w.step_count == 3000
+    assert w.positions.shape == (41, 3)
