@@ -27,6 +27,7 @@ pub use id::{BodyId, JointId};
 pub use mass::{MassError, MassProperties, PrincipalFrame};
 pub use math::{DMat3, DQuat, DVec3, Transform};
 pub use shape::{
-    Capsule, Compound, CompoundChild, Cone, ConvexHull, Cuboid, Cylinder, HullError, Shape, Sphere, TriMesh,
+    Capsule, Compound, CompoundChild, Cone, ConvexHull, Cuboid, Cylinder, HeightField, HullError, Plane,
+    Shape, ShapeError, Sphere, TriMesh,
 };
 pub use world::{World, WorldDef, WorldError};

@@ -90,6 +90,15 @@ fn check_vec(what: &'static str, v: DVec3) -> Result<DVec3, WorldError> {
     }
 }
 
+/// True when the shape is, or has a part that is, a static (possibly open) mesh.
+fn has_open_mesh(shape: &crate::shape::Shape) -> bool {
+    match shape {
+        crate::shape::Shape::TriMesh(m) => !m.is_closed(),
+        crate::shape::Shape::Compound(c) => c.children().iter().any(|child| has_open_mesh(&child.shape)),
+        _ => false,
+    }
+}
+
 fn check_solver_settings(s: &SolverSettings) -> Result<(), WorldError> {
     let bad = |m: String| Err(WorldError::InvalidSolverSettings(m));
     if s.substeps == 0 || s.substeps > 1000 {
@@ -194,6 +203,22 @@ impl World {
         if !def.gravity_scale.is_finite() {
             return Err(invalid(format!("gravity_scale must be finite, got {}", def.gravity_scale)));
         }
+        if let Some(shape) = &def.shape {
+            if def.kind != BodyKind::Static {
+                if let Some(what) = shape.static_only_part() {
+                    return Err(invalid(format!(
+                        "a {what} is static-only geometry: a body with one must be static, not {}",
+                        def.kind.name()
+                    )));
+                }
+            }
+            if def.kind == BodyKind::Dynamic && has_open_mesh(shape) {
+                return Err(invalid(
+                    "a dynamic body's mesh must be closed (TriMesh::new); a TriMesh::new_static mesh is for static bodies"
+                        .into(),
+                ));
+            }
+        }
         let mass_properties = Self::resolve_mass(&def)?;
         let principal = mass_properties.principal();
         if def.kind == BodyKind::Dynamic && !(principal.moments.min_element() > 0.0) {
@@ -233,7 +258,18 @@ impl World {
                 if !def.density.is_finite() || def.density <= 0.0 {
                     return Err(mass_error(MassError::NotPositive { what: "density", value: def.density }));
                 }
-                let mp = shape.mass_properties(def.density).map_err(mass_error)?;
+                let mp = match shape.mass_properties(def.density) {
+                    // Static geometry has no mass; a static body never uses one.
+                    Err(MassError::StaticOnly { .. }) if def.kind != BodyKind::Dynamic => {
+                        return Ok(MassProperties {
+                            volume: 0.0,
+                            mass: 1.0,
+                            center_of_mass: DVec3::ZERO,
+                            inertia: DMat3::IDENTITY,
+                        })
+                    }
+                    other => other.map_err(mass_error)?,
+                };
                 match def.mass {
                     Some(m) => mp.with_mass(m).map_err(mass_error),
                     None => Ok(mp),

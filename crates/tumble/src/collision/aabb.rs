@@ -76,6 +76,17 @@ impl Aabb {
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
 
+    /// The eight corners.
+    pub fn corners(&self) -> [DVec3; 8] {
+        std::array::from_fn(|i| {
+            DVec3::new(
+                if i & 1 == 0 { self.min.x } else { self.max.x },
+                if i & 2 == 0 { self.min.y } else { self.max.y },
+                if i & 4 == 0 { self.min.z } else { self.max.z },
+            )
+        })
+    }
+
     /// The box grown by `margin` on every side.
     #[inline]
     pub fn fattened(&self, margin: f64) -> Aabb {
@@ -166,7 +177,32 @@ pub fn shape_aabb(shape: &Shape, pose: &Transform) -> Aabb {
         Shape::Compound(c) => c.children().iter().fold(Aabb::EMPTY, |b, child| {
             b.union(&shape_aabb(&child.shape, &pose.mul_transform(&child.pose)))
         }),
+        Shape::Plane(p) => plane_aabb(p, pose),
+        Shape::HeightField(h) => {
+            let (lo, hi) = h.local_bounds();
+            points_aabb(&Aabb::new(lo, hi).corners(), pose)
+        }
     }
+}
+
+/// A half-space's bounds within the cube of half size `PLANE_EXTENT` about the world origin: the
+/// whole cube, except that an axis-aligned plane bounds its own axis at its surface.
+fn plane_aabb(plane: &crate::shape::Plane, pose: &Transform) -> Aabb {
+    use crate::shape::PLANE_EXTENT;
+    let n = pose.rotation * plane.normal;
+    let offset = plane.offset + n.dot(pose.translation);
+    let mut b = Aabb::from_center_half_extents(DVec3::ZERO, DVec3::splat(PLANE_EXTENT));
+    for k in 0..3 {
+        if n[k].abs() >= 1.0 - 1e-12 {
+            let surface = (offset / n[k]).clamp(-PLANE_EXTENT, PLANE_EXTENT);
+            if n[k] > 0.0 {
+                b.max[k] = surface;
+            } else {
+                b.min[k] = surface;
+            }
+        }
+    }
+    b
 }
 
 /// The world bounds of points given in a local frame placed at `pose` (e.g. mesh vertices).

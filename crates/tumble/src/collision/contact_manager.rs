@@ -189,6 +189,15 @@ fn update_manifold(contact: &mut Contact, a: &Body, b: &Body, dt: f64) {
     };
     let (leaf_a, local_a) = leaf(shape_a, contact.child_a);
     let (leaf_b, local_b) = leaf(shape_b, contact.child_b);
+    // A dynamic body's closed mesh collides through its convex hull.
+    let moving = |body: &Body, shape| {
+        if body.kind == BodyKind::Dynamic {
+            Shape::moving_collision_shape(shape)
+        } else {
+            shape
+        }
+    };
+    let (leaf_a, leaf_b) = (moving(a, leaf_a), moving(b, leaf_b));
     let pose_a = a.transform().mul_transform(&local_a);
     let pose_b = b.transform().mul_transform(&local_b);
     // Contacts within reach of this step's relative motion are made now, so the solver can stop

@@ -28,9 +28,9 @@ pub struct Feature {
     pub code: u16,
 }
 
-const VERTEX: u16 = 0;
-const EDGE: u16 = 1 << 14;
-const FACE: u16 = 2 << 14;
+pub(crate) const VERTEX: u16 = 0;
+pub(crate) const EDGE: u16 = 1 << 14;
+pub(crate) const FACE: u16 = 2 << 14;
 
 impl Feature {
     fn new(points: Vec<DVec3>, kind: u16, index: usize) -> Feature {
@@ -63,6 +63,7 @@ pub fn supporting_feature(core: &Core, dir_local: DVec3) -> Feature {
         }
         Core::Cuboid { half_extents } => polytope_feature(&Polytope::Cuboid { half_extents }, d),
         Core::Hull(h) => polytope_feature(&Polytope::Hull(h), d),
+        Core::Triangle(v) => super::triangle::triangle_feature(&v, d),
         Core::Cylinder { radius, half_height } => {
             if d.z.abs() >= FACE_COS_TOLERANCE {
                 Feature::new(cap(radius, half_height, d.z > 0.0), FACE, usize::from(d.z > 0.0))

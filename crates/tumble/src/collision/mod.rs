@@ -1,7 +1,8 @@
 //! Collision detection: bounding volumes and the broad phase that finds candidate pairs; the
 //! convex narrow phase (support functions, GJK distance, EPA penetration, the separating-axis test
 //! with face clipping for polyhedra, closed forms for spheres and capsules, contact manifolds and
-//! the shape-pair table `narrow_phase::collide`); the contact manager that keeps contacts between
+//! the shape-pair table `narrow_phase::collide`); static geometry (planes, height fields and
+//! triangle meshes with their BVH and the internal-edge rule); the contact manager that keeps contacts between
 //! steps; ray casts and filtering. See `docs/collision.md` for the derivations.
 //!
 //! Frames: every `Aabb` and `Ray` here is in world coordinates unless its name says `_local`.
@@ -17,13 +18,18 @@ pub mod feature;
 pub mod filter;
 pub mod gjk;
 pub mod manifold;
+pub mod mesh_bvh;
+pub mod mesh_contact;
 pub mod narrow_phase;
+pub mod plane_contact;
 pub mod polytope;
 pub mod ray;
 pub mod round;
 pub mod sat;
 pub mod segment;
+pub mod static_pairs;
 pub mod support;
+pub mod triangle;
 
 pub use aabb::{shape_aabb, Aabb};
 pub use broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};

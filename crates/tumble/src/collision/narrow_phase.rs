@@ -8,13 +8,15 @@
 //!
 //! The table is written for one order of each pair (by [`kind_rank`]); the other order calls it
 //! with the shapes swapped and flips the result, so `collide(a, b)` and `collide(b, a)` agree up to
-//! the direction of the normal. Meshes and compounds are not convex and are not handled here.
+//! the direction of the normal. Planes, height fields and triangle meshes go to
+//! `static_pairs::collide_static` first; compounds are split into leaves by the contact manager.
 
 use super::convex_contact::collide_convex;
 use super::manifold::Manifold;
 use super::polytope::Polytope;
 use super::round::{box_sphere, capsule_capsule, sphere_capsule, sphere_sphere};
 use super::sat::{collide_polytopes, SatCache};
+use super::static_pairs::{collide_static, is_static_geometry};
 use super::support::Rounded;
 use crate::math::{DVec3, Transform};
 use crate::shape::Shape;
@@ -38,11 +40,12 @@ pub fn kind_rank(shape: &Shape) -> Option<u8> {
         Shape::ConvexHull(_) => Some(3),
         Shape::Cylinder(_) => Some(4),
         Shape::Cone(_) => Some(5),
-        Shape::TriMesh(_) | Shape::Compound(_) => None,
+        Shape::TriMesh(_) | Shape::Compound(_) | Shape::Plane(_) | Shape::HeightField(_) => None,
     }
 }
 
-/// The contact manifold of two convex shapes at the given poses, or `None` when they are more
+/// The contact manifold of two shapes (convex, or convex against static geometry: a plane, height
+/// field or triangle mesh) at the given poses, or `None` when they are more
 /// than `speculative_margin` apart (contacts within the margin are reported with positive
 /// separation, so the solver can stop bodies before they meet). The normal points from A to B.
 pub fn collide(
@@ -53,6 +56,9 @@ pub fn collide(
     speculative_margin: f64,
     cache: &mut PairCache,
 ) -> Option<Manifold> {
+    if is_static_geometry(shape_a) || is_static_geometry(shape_b) {
+        return collide_static(shape_a, pose_a, shape_b, pose_b, speculative_margin);
+    }
     let (ra, rb) = (kind_rank(shape_a)?, kind_rank(shape_b)?);
     if ra > rb {
         return collide_ordered(shape_b, pose_b, shape_a, pose_a, speculative_margin, cache)

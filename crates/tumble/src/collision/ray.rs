@@ -13,6 +13,9 @@
 //! - Triangle meshes are treated as surfaces: the ray reports its first crossing of any triangle,
 //!   front or back face, with that triangle's outward normal. A hit with `normal · direction > 0`
 //!   means the ray started inside the closed mesh and is leaving it.
+//! - A plane is a solid half-space (origin inside → distance 0, like the convex solids). Height
+//!   fields are surfaces like meshes: first crossing from either side, with the triangle's
+//!   upward normal. Meshes and height fields use their BVH / cell walk.
 //! - Compounds report the closest hit over their children.
 //! - Hits farther than `max_distance` are misses.
 
@@ -73,8 +76,9 @@ pub fn ray_cast_shape(shape: &Shape, pose: &Transform, ray: &Ray) -> Option<RayH
         Shape::Capsule(c) => capsule_local(o, d, c),
         Shape::Cylinder(c) => cylinder_local(o, d, c),
         Shape::Cone(c) => cone_local(o, d, c),
-        Shape::TriMesh(m) => ray_cast_mesh_local(m.vertices(), m.triangles(), o, d, max_t)
-            .map(|(t, n_local)| (t, Some(n_local))),
+        Shape::TriMesh(m) => m.ray_cast_local(o, d, max_t).map(|(t, n_local, _)| (t, Some(n_local))),
+        Shape::HeightField(h) => h.ray_cast_local(o, d, max_t).map(|(t, n_local, _)| (t, Some(n_local))),
+        Shape::Plane(p) => plane_local(o, d, p),
         Shape::ConvexHull(h) => hull_local(o, d, h),
         Shape::Compound(_) => unreachable!("handled above"),
     };
@@ -87,6 +91,17 @@ pub fn ray_cast_shape(shape: &Shape, pose: &Transform, ray: &Ray) -> Option<RayH
         None => -ray.direction,
     };
     Some(RayHit { distance, point: ray.at(distance), normal })
+}
+
+/// A half-space is solid: an origin inside (or on the surface) hits at 0; otherwise the ray
+/// enters where it crosses the surface, if it is heading towards it.
+fn plane_local(o: DVec3, d: DVec3, p: &crate::shape::Plane) -> Option<LocalHit> {
+    let height = p.signed_distance(o);
+    if height <= 0.0 {
+        return Some((0.0, None));
+    }
+    let rate = p.normal.dot(d);
+    (rate < 0.0).then(|| (height / -rate, Some(p.normal)))
 }
 
 /// The smaller root `t` of `|o + t·d − center|² = r²` for a unit `d`, if the line meets the
@@ -281,7 +296,7 @@ fn cone_local(o: DVec3, d: DVec3, c: &Cone) -> Option<LocalHit> {
 
 /// Closest crossing of a ray (local frame, unit `direction_local`) with a triangle list, by
 /// Möller–Trumbore, both faces. Returns the distance and the triangle's outward normal (from its
-/// counter-clockwise winding). Linear in the triangle count; a mesh BVH will replace the loop.
+/// counter-clockwise winding). Linear in the triangle count (`TriMesh::ray_cast_local` uses the BVH).
 pub fn ray_cast_mesh_local(
     vertices: &[DVec3],
     triangles: &[[u32; 3]],

@@ -32,6 +32,9 @@ pub enum Core<'a> {
         half_height: f64,
     },
     Hull(&'a ConvexHull),
+    /// A triangle (corners counter-clockwise about its front normal): a flat core, for contacts
+    /// against meshes and height fields.
+    Triangle([DVec3; 3]),
 }
 
 /// A shape as core plus radius: the set of points within `radius` of the core.
@@ -51,7 +54,7 @@ impl<'a> Rounded<'a> {
             Shape::Cylinder(c) => (Core::Cylinder { radius: c.radius, half_height: c.half_height }, 0.0),
             Shape::Cone(c) => (Core::Cone { radius: c.radius, half_height: c.half_height }, 0.0),
             Shape::ConvexHull(h) => (Core::Hull(h), 0.0),
-            Shape::TriMesh(_) | Shape::Compound(_) => return None,
+            Shape::TriMesh(_) | Shape::Compound(_) | Shape::Plane(_) | Shape::HeightField(_) => return None,
         };
         Some(Rounded { core, radius })
     }
@@ -90,6 +93,16 @@ impl Core<'_> {
                 }
             }
             Core::Hull(h) => h.vertices()[h.support_index(d)],
+            Core::Triangle(v) => {
+                let (d0, d1, d2) = (v[0].dot(d), v[1].dot(d), v[2].dot(d));
+                if d0 >= d1 && d0 >= d2 {
+                    v[0]
+                } else if d1 >= d2 {
+                    v[1]
+                } else {
+                    v[2]
+                }
+            }
         }
     }
 
@@ -103,12 +116,13 @@ impl Core<'_> {
                 radius.hypot(half_height)
             }
             Core::Hull(h) => h.vertices().iter().fold(0.0_f64, |m, v| m.max(v.length())),
+            Core::Triangle(v) => v.iter().fold(0.0_f64, |m, p| m.max(p.length())),
         }
     }
 
     /// True for the cores whose Minkowski differences with anything have volume (EPA needs it).
     pub fn is_solid(&self) -> bool {
-        !matches!(self, Core::Point | Core::Segment { .. })
+        !matches!(self, Core::Point | Core::Segment { .. } | Core::Triangle(_))
     }
 }
 

@@ -19,6 +19,18 @@ const DEGENERATE_AREA: f64 = 16.0 * f64::EPSILON;
 /// bounding-box volume and `Σ |tetrahedron volumes|` (the round-off scale of the volume sum).
 const ZERO_VOLUME: f64 = 1e-12;
 
+/// Checks the parts of a mesh that every use needs — not empty, indices in range, finite vertices,
+/// no degenerate triangles — but not closedness or winding (an open static collision mesh).
+pub fn validate_mesh_surface(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<(), MassError> {
+    if triangles.is_empty() {
+        return Err(MassError::EmptyMesh);
+    }
+    check_indices(vertices.len(), triangles)?;
+    check_finite(vertices)?;
+    let (lo, hi) = bounds(vertices, triangles);
+    check_degenerate(vertices, triangles, (hi - lo).length_squared())
+}
+
 /// Checks that a mesh is finite, non-degenerate, closed, consistently and outwardly wound.
 pub fn validate_closed_mesh(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<(), MassError> {
     checked_integrals(vertices, triangles).map(|_| ())

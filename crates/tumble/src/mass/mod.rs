@@ -12,7 +12,7 @@ mod primitives;
 mod volume_integrals;
 
 pub use eigen::symmetric_eigen;
-pub use mesh::validate_closed_mesh;
+pub use mesh::{validate_closed_mesh, validate_mesh_surface};
 
 /// What went wrong computing mass properties. Every variant says what and where.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -37,6 +37,8 @@ pub enum MassError {
     ZeroVolume { volume: f64 },
     #[error("compound has no parts")]
     EmptyCompound,
+    #[error("{what} has no mass properties: it is static-only geometry; use it on a static body")]
+    StaticOnly { what: &'static str },
 }
 
 /// Mass properties of a solid in its own frame.

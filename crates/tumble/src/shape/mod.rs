@@ -7,11 +7,17 @@ use crate::mass::{MassError, MassProperties};
 
 mod compound;
 mod convex_hull;
+mod error;
+mod heightfield;
+mod plane;
 mod primitives;
 mod trimesh;
 
 pub use compound::{Compound, CompoundChild};
 pub use convex_hull::{ConvexHull, HullEdge, HullError, HullFace};
+pub use error::ShapeError;
+pub use heightfield::HeightField;
+pub use plane::{Plane, PLANE_EXTENT};
 pub use primitives::{Capsule, Cone, Cuboid, Cylinder, Sphere};
 pub use trimesh::TriMesh;
 
@@ -25,9 +31,14 @@ pub enum Shape {
     Cone(Cone),
     /// A convex polyhedron (quickhull of a point cloud).
     ConvexHull(ConvexHull),
-    /// A closed triangle mesh (its mass properties by the Mirtich–Eberly volume integrals).
+    /// A triangle mesh: closed (mass by the Mirtich–Eberly volume integrals; a dynamic body
+    /// collides through its convex hull) or static (`TriMesh::new_static`, possibly open).
     TriMesh(TriMesh),
     Compound(Compound),
+    /// A half-space (static bodies only).
+    Plane(Plane),
+    /// Terrain from a grid of heights (static bodies only).
+    HeightField(HeightField),
 }
 
 impl Shape {
@@ -40,7 +51,12 @@ impl Shape {
             Shape::Cylinder(s) => MassProperties::cylinder(s.radius, s.half_height, density),
             Shape::Cone(s) => MassProperties::cone(s.radius, s.half_height, density),
             Shape::ConvexHull(h) => MassProperties::from_mesh(h.vertices(), &h.triangles(), density),
+            Shape::TriMesh(m) if !m.is_closed() => Err(MassError::StaticOnly {
+                what: "a static (possibly open) triangle mesh from TriMesh::new_static",
+            }),
             Shape::TriMesh(m) => MassProperties::from_mesh(m.vertices(), m.triangles(), density),
+            Shape::Plane(_) => Err(MassError::StaticOnly { what: "a plane (an infinite half-space)" }),
+            Shape::HeightField(_) => Err(MassError::StaticOnly { what: "a height field" }),
             Shape::Compound(c) => {
                 let parts = c
                     .children()
@@ -63,6 +79,27 @@ impl Shape {
             Shape::ConvexHull(_) => "hull",
             Shape::TriMesh(_) => "mesh",
             Shape::Compound(_) => "compound",
+            Shape::Plane(_) => "plane",
+            Shape::HeightField(_) => "heightfield",
+        }
+    }
+
+    /// The name of the first part of this shape that only a static body may have (a plane or a
+    /// height field, also inside a compound), or `None`.
+    pub fn static_only_part(&self) -> Option<&'static str> {
+        match self {
+            Shape::Plane(_) => Some("plane"),
+            Shape::HeightField(_) => Some("height field"),
+            Shape::Compound(c) => c.children().iter().find_map(|child| child.shape.static_only_part()),
+            _ => None,
+        }
+    }
+
+    /// The shape a *dynamic* body collides as: a closed mesh's convex hull, anything else itself.
+    pub fn moving_collision_shape(&self) -> &Shape {
+        match self {
+            Shape::TriMesh(m) => m.hull_shape().unwrap_or(self),
+            other => other,
         }
     }
 }

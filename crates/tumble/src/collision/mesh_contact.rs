@@ -1,0 +1,268 @@
+//! Convex shape against static triangles (a triangle mesh or a height field).
+//!
+//! 1. **Candidates.** The convex shape's bounds, in the mesh frame and fattened by the margin,
+//!    query the mesh's BVH (or the height field's cells).
+//! 2. **Per triangle.** Triangles are one-sided: a triangle is skipped when the shape's centre lies
+//!    behind its plane, or when the shape's lowest point along `−n_T` is more than the margin
+//!    above it (the triangle's plane separates them). A triangle whose edges are all internal
+//!    (flat or concave neighbours) can only have its face normal, so it goes straight to the face
+//!    contact. A triangle with a convex or boundary edge first runs GJK/EPA between the triangle
+//!    and the shape's core; if the normal found passes the internal-edge rule (see
+//!    [`super::triangle`]) and is not the face normal, the contact is the convex–convex manifold
+//!    of the triangle and the shape (edge or vertex contact). Otherwise it is the face contact:
+//!    the shape's feature facing `−n_T` clipped to the triangle, separations from its plane.
+//! 3. **One manifold.** The normal is that of the deepest candidate; candidates within 30° of it
+//!    are kept with their separations measured along it, the others dropped. Duplicates (a box
+//!    corner over an edge shared by two triangles) are merged by feature id, and the rest reduced
+//!    to four points: the deepest (among near-ties, the one farthest from the patch centre, so a
+//!    box flat on the floor keeps its corners), then the farthest from it, the largest triangle,
+//!    the largest quadrilateral.
+//!
+//! Feature ids: a point that is a vertex of the shape's feature (a box corner) is named by the
+//! shape's feature alone, so it keeps its id — and its warm-start impulse — as it slides from one
+//! triangle to the next. Points made by clipping against a triangle's edges include the triangle
+//! index, so they are stable while the same triangle is touched.
+
+use super::aabb::{shape_aabb, Aabb};
+use super::clip::clip_to_face;
+use super::convex_contact::collide_convex;
+use super::epa::epa;
+use super::feature::{supporting_feature, FACE_COS_TOLERANCE};
+use super::gjk::{gjk, ConvexPair};
+use super::manifold::{ContactPoint, Manifold, MAX_POINTS};
+use super::support::{Core, Rounded};
+use super::triangle::{edge_bends, has_sharp_edge, normal_allowed, TriangleSource};
+use crate::math::{DVec3, Transform};
+use crate::shape::Shape;
+
+/// Candidates whose normal is within this cosine (30°) of the dominant one join the manifold.
+const MERGE_COS: f64 = 0.866;
+/// Separations within this distance (m) of the deepest count as tied for the first point.
+const TIE_DISTANCE: f64 = 1e-5;
+
+/// A contact point before reduction, in the mesh's local frame.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    normal: DVec3,
+    /// The point on the convex shape's surface.
+    on_b: DVec3,
+    separation: f64,
+    id: u32,
+}
+
+/// Contact of static triangles `source` (A, at `pose_a`) with the convex `shape` (B). The normal
+/// points from the triangles to the shape. `None` when nothing is within `margin`.
+pub fn collide_triangles_convex<S: TriangleSource + ?Sized>(
+    source: &S,
+    pose_a: &Transform,
+    shape: &Shape,
+    pose_b: &Transform,
+    margin: f64,
+) -> Option<Manifold> {
+    let rounded = Rounded::of(shape)?;
+    let b_in_a = pose_a.inverse().mul_transform(pose_b);
+    let query: Aabb = shape_aabb(shape, &b_in_a).fattened(margin);
+    let mut triangles = Vec::new();
+    source.query(&query, &mut |t| triangles.push(t));
+    let mut candidates = Vec::new();
+    for &t in &triangles {
+        triangle_contact(source, t, &rounded, &b_in_a, margin, &mut candidates);
+    }
+    build_manifold(candidates, pose_a, pose_b, margin)
+}
+
+/// Appends the contact candidates of triangle `t` with the shape (at `b_in_a`, mesh frame).
+fn triangle_contact<S: TriangleSource + ?Sized>(
+    source: &S,
+    t: u32,
+    shape: &Rounded,
+    b_in_a: &Transform,
+    margin: f64,
+    out: &mut Vec<Candidate>,
+) {
+    let v = source.triangle(t);
+    let n_t = source.triangle_normal(t);
+    if n_t == DVec3::ZERO || n_t.dot(b_in_a.translation - v[0]) < 0.0 {
+        return; // degenerate, or the shape's centre is behind the triangle
+    }
+    let down_local = b_in_a.rotation.inverse() * -n_t;
+    let lowest = b_in_a.transform_point(shape.core.support_local(down_local));
+    if n_t.dot(lowest - v[0]) - shape.radius > margin {
+        return;
+    }
+    let bends = edge_bends(source, t, &v, n_t);
+    if has_sharp_edge(&bends) && edge_contact(t, &v, n_t, &bends, shape, b_in_a, margin, out) {
+        return;
+    }
+    face_contact(t, &v, n_t, shape, b_in_a, down_local, margin, out);
+}
+
+/// GJK/EPA between the triangle and the shape. If the normal is allowed by the internal-edge rule
+/// and is not the face normal, appends the convex–convex manifold and returns true; returns false
+/// when the face contact should be used instead (or nothing is within reach — the face contact
+/// then finds nothing either).
+#[allow(clippy::too_many_arguments)]
+fn edge_contact(
+    t: u32,
+    v: &[DVec3; 3],
+    n_t: DVec3,
+    bends: &[Option<f64>; 3],
+    shape: &Rounded,
+    b_in_a: &Transform,
+    margin: f64,
+    out: &mut Vec<Candidate>,
+) -> bool {
+    // Work relative to the triangle's centroid: small coordinates, small round-off.
+    let centroid = (v[0] + v[1] + v[2]) / 3.0;
+    let tri = Rounded { core: Core::Triangle(v.map(|p| p - centroid)), radius: 0.0 };
+    let tri_pose = Transform::new(centroid, crate::math::DQuat::IDENTITY);
+    let pair = ConvexPair::new(tri.core, &tri_pose, shape.core, b_in_a);
+    let g = gjk(&pair, n_t);
+    if !g.overlapping && g.distance > shape.radius + margin {
+        return true; // out of reach: no contact from this triangle at all
+    }
+    let normal = if !g.overlapping && g.distance > 1e-9 * pair.scale() {
+        (g.point_b - g.point_a) / g.distance
+    } else {
+        match epa(&pair, &g.simplex) {
+            Some(e) => e.normal,
+            None => return false,
+        }
+    };
+    if normal.dot(n_t) >= FACE_COS_TOLERANCE || !normal_allowed(v, n_t, bends, normal) {
+        return false;
+    }
+    let mut warm = normal;
+    let Some(m) = collide_convex(&tri, &tri_pose, shape, b_in_a, margin, &mut warm) else {
+        return true;
+    };
+    // The manifold may have come out as a face contact after all (its own feature tolerance).
+    if !normal_allowed(v, n_t, bends, m.normal_world) {
+        return false;
+    }
+    for p in m.points() {
+        out.push(Candidate {
+            normal: m.normal_world,
+            on_b: p.point_world + m.normal_world * (0.5 * p.separation),
+            separation: p.separation,
+            id: triangle_id(t, p.feature_id),
+        });
+    }
+    true
+}
+
+/// The face contact: the shape's feature facing `−n_t` clipped to the triangle.
+#[allow(clippy::too_many_arguments)]
+fn face_contact(
+    t: u32,
+    v: &[DVec3; 3],
+    n_t: DVec3,
+    shape: &Rounded,
+    b_in_a: &Transform,
+    down_local: DVec3,
+    margin: f64,
+    out: &mut Vec<Candidate>,
+) {
+    let feature = supporting_feature(&shape.core, down_local);
+    let incident: Vec<DVec3> = feature.points.iter().map(|&p| b_in_a.transform_point(p)).collect();
+    let code = u32::from(feature.code);
+    for c in clip_to_face(v, n_t, &incident, margin + shape.radius) {
+        let id = if c.tag < 0x8000 {
+            // A vertex of the shape's own feature: named by the shape alone.
+            (code << 15) | u32::from(c.tag)
+        } else {
+            triangle_id(t, (code << 16) | u32::from(c.tag))
+        };
+        out.push(Candidate {
+            normal: n_t,
+            on_b: c.point - n_t * shape.radius,
+            separation: c.separation - shape.radius,
+            id,
+        });
+    }
+}
+
+/// An id that names triangle `t` and a local feature id (top bit set, so it never equals an id
+/// that names the shape's feature alone).
+#[inline]
+fn triangle_id(t: u32, local: u32) -> u32 {
+    0x8000_0000 | ((t.wrapping_mul(0x9E37_79B1) ^ local.rotate_left(7)) & 0x7FFF_FFFF)
+}
+
+/// One manifold from all candidates (mesh frame) — see the module docs.
+fn build_manifold(
+    mut candidates: Vec<Candidate>,
+    pose_a: &Transform,
+    pose_b: &Transform,
+    margin: f64,
+) -> Option<Manifold> {
+    let deepest = candidates.iter().enumerate().min_by(|x, y| x.1.separation.total_cmp(&y.1.separation))?.0;
+    let normal = candidates[deepest].normal;
+    candidates.retain_mut(|c| {
+        let cos = c.normal.dot(normal);
+        c.separation *= cos;
+        cos >= MERGE_COS && c.separation <= margin
+    });
+    // Merge duplicates: keep the deepest point of each id (stable sort: deterministic order).
+    candidates.sort_by(|x, y| x.id.cmp(&y.id).then(x.separation.total_cmp(&y.separation)));
+    candidates.dedup_by_key(|c| c.id);
+    let normal_world = pose_a.rotation * normal;
+    let mut m = Manifold::new(normal_world);
+    for i in reduce(&candidates, normal) {
+        let c = candidates[i];
+        let on_b = pose_a.transform_point(c.on_b);
+        let mid = on_b - normal_world * (0.5 * c.separation);
+        m.push(ContactPoint::new(pose_a, pose_b, normal_world, mid, c.separation, c.id));
+    }
+    (!m.is_empty()).then_some(m)
+}
+
+/// Up to four candidates spanning the patch (see the module docs); areas in the plane normal to
+/// `normal`.
+fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
+    let n = c.len();
+    if n <= MAX_POINTS {
+        return (0..n).collect();
+    }
+    let flat = |d: DVec3| d - normal * normal.dot(d);
+    let min_sep = c.iter().fold(f64::INFINITY, |m, p| m.min(p.separation));
+    let centre = c.iter().map(|p| p.on_b).sum::<DVec3>() / n as f64;
+    let argmax = |score: &dyn Fn(usize) -> f64| {
+        let mut best = (usize::MAX, 0.0);
+        for i in 0..n {
+            let s = score(i);
+            if s > best.1 {
+                best = (i, s);
+            }
+        }
+        best.0
+    };
+    let first = argmax(&|i| {
+        if c[i].separation <= min_sep + TIE_DISTANCE {
+            1.0 + flat(c[i].on_b - centre).length_squared()
+        } else {
+            0.0
+        }
+    });
+    let p = |i: usize| c[i].on_b;
+    let second = argmax(&|i| flat(p(i) - p(first)).length_squared());
+    if second == usize::MAX {
+        return vec![first];
+    }
+    let area = |a: DVec3, b: DVec3, q: DVec3| (b - a).cross(q - a).dot(normal);
+    let third = argmax(&|i| area(p(first), p(second), p(i)).abs());
+    if third == usize::MAX {
+        return vec![first, second];
+    }
+    let tri = if area(p(first), p(second), p(third)) > 0.0 {
+        [first, second, third]
+    } else {
+        [first, third, second]
+    };
+    let fourth = argmax(&|i| (0..3).fold(0.0_f64, |m, k| m.max(-area(p(tri[k]), p(tri[(k + 1) % 3]), p(i)))));
+    if fourth == usize::MAX {
+        vec![first, second, third]
+    } else {
+        vec![first, second, third, fourth]
+    }
+}

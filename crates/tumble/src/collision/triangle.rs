@@ -1,0 +1,228 @@
+//! Triangles of static geometry (meshes and height fields): the supporting feature of a triangle,
+//! ray–triangle intersection, a common view of "a set of triangles with neighbours", and the
+//! internal-edge rule.
+//!
+//! ## The internal-edge rule
+//!
+//! A body sliding over a flat floor made of many triangles must feel one flat floor. Tested one
+//! triangle at a time, though, a box corner that dips just below the floor next to a triangle's
+//! edge is pushed out *sideways over that edge*: the shortest way out of that single triangle. The
+//! edge is internal — the neighbouring triangle continues the surface — so that normal is wrong,
+//! and the box catches on it.
+//!
+//! The fix (as in Bullet's `btAdjustInternalEdgeContacts` and Gregorius' "Robust contact creation
+//! for physics simulations", GDC 2015) is to allow an edge or vertex normal only where the surface
+//! really has an edge. For triangle `T` with front normal `n_T`, edge `k` with unit direction `e`
+//! (counter-clockwise), outward in-plane direction `u = e × n_T`, and neighbour normal `n_N`, the
+//! edge's *bend* is `φ = atan2(n_N·u, n_N·n_T)`: positive for a convex edge (the surface falls
+//! away), zero for a flat one, negative for a concave one. The normals the surface can have at a
+//! convex edge fill the arc from `n_T` (θ = 0) to `n_N` (θ = φ) about `e`. A contact normal `n`
+//! from `T` is **allowed** when, for every edge it leans over (`n·u > 0`), that edge is a boundary
+//! (no neighbour) or convex with `θ = atan2(n·u, n·n_T) ≤ φ` (plus a small tolerance). Any other
+//! normal — leaning over a flat or concave edge, or past the neighbour's normal — is replaced by
+//! `n_T`, and the contact is recomputed as a face contact of `T` (the body's feature facing `−n_T`
+//! clipped to `T`, separations measured from `T`'s plane). If nothing of the body lies over `T`,
+//! `T` gives no contact: its neighbour does. A vertex is handled through its two edges on `T`.
+
+use super::aabb::Aabb;
+use super::feature::{Feature, EDGE, EDGE_SIN_TOLERANCE, FACE, FACE_COS_TOLERANCE, VERTEX};
+use crate::math::DVec3;
+use crate::shape::{HeightField, TriMesh};
+
+/// An edge counts as convex when its bend exceeds this angle (rad); flatter edges are internal.
+pub const CONVEX_EDGE_ANGLE: f64 = 1e-3;
+/// A normal leaning over an edge by less than this (the sine of an angle) does not lean over it.
+pub const LEAN_TOLERANCE: f64 = 1e-7;
+/// A convex edge allows normals up to this much (rad) beyond its neighbour's normal.
+pub const EDGE_ANGLE_TOLERANCE: f64 = 1e-3;
+
+/// A set of triangles with neighbours across their edges: a mesh or a height field.
+pub trait TriangleSource {
+    /// Corners of triangle `t`, counter-clockwise about its front normal, local frame.
+    fn triangle(&self, t: u32) -> [DVec3; 3];
+    /// Unit front normal of triangle `t`.
+    fn triangle_normal(&self, t: u32) -> DVec3;
+    /// The triangle across edge `k` (corner `k` to corner `k + 1`) of `t`, if any.
+    fn neighbor(&self, t: u32, k: usize) -> Option<u32>;
+    /// Calls `visit` with (at least) every triangle whose bounds overlap `aabb_local`.
+    fn query(&self, aabb_local: &Aabb, visit: &mut dyn FnMut(u32));
+}
+
+impl TriangleSource for TriMesh {
+    fn triangle(&self, t: u32) -> [DVec3; 3] {
+        self.triangle_points(t)
+    }
+    fn triangle_normal(&self, t: u32) -> DVec3 {
+        self.normal(t)
+    }
+    fn neighbor(&self, t: u32, k: usize) -> Option<u32> {
+        TriMesh::neighbor(self, t, k)
+    }
+    fn query(&self, aabb_local: &Aabb, visit: &mut dyn FnMut(u32)) {
+        self.bvh().query(aabb_local, visit);
+    }
+}
+
+impl TriangleSource for HeightField {
+    fn triangle(&self, t: u32) -> [DVec3; 3] {
+        self.triangle_points(t)
+    }
+    fn triangle_normal(&self, t: u32) -> DVec3 {
+        let [a, b, c] = self.triangle_points(t);
+        (b - a).cross(c - a).normalize_or_zero()
+    }
+    fn neighbor(&self, t: u32, k: usize) -> Option<u32> {
+        HeightField::neighbor(self, t, k)
+    }
+    fn query(&self, aabb_local: &Aabb, visit: &mut dyn FnMut(u32)) {
+        HeightField::query(self, aabb_local.min, aabb_local.max, visit);
+    }
+}
+
+/// The bend of each edge of triangle `t` (see the module docs), `None` for a boundary edge.
+pub fn edge_bends<S: TriangleSource + ?Sized>(
+    source: &S,
+    t: u32,
+    v: &[DVec3; 3],
+    n_t: DVec3,
+) -> [Option<f64>; 3] {
+    std::array::from_fn(|k| {
+        let nb = source.neighbor(t, k)?;
+        let n_n = source.triangle_normal(nb);
+        let u = (v[(k + 1) % 3] - v[k]).normalize_or_zero().cross(n_t);
+        Some(n_n.dot(u).atan2(n_n.dot(n_t)))
+    })
+}
+
+/// True when some edge is a boundary or convex: only then can a contact normal differ from the
+/// face normal.
+pub fn has_sharp_edge(bends: &[Option<f64>; 3]) -> bool {
+    bends.iter().any(|b| b.is_none_or(|phi| phi > CONVEX_EDGE_ANGLE))
+}
+
+/// The internal-edge rule: may a contact on triangle `v` (front normal `n_t`, edge bends `bends`)
+/// have the normal `n`? See the module docs.
+pub fn normal_allowed(v: &[DVec3; 3], n_t: DVec3, bends: &[Option<f64>; 3], n: DVec3) -> bool {
+    let mut leans = false;
+    for k in 0..3 {
+        let u = (v[(k + 1) % 3] - v[k]).normalize_or_zero().cross(n_t);
+        let lean = n.dot(u);
+        if lean <= LEAN_TOLERANCE {
+            continue;
+        }
+        leans = true;
+        match bends[k] {
+            None => {}
+            Some(phi) if phi > CONVEX_EDGE_ANGLE => {
+                if lean.atan2(n.dot(n_t)) > phi + EDGE_ANGLE_TOLERANCE {
+                    return false;
+                }
+            }
+            Some(_) => return false,
+        }
+    }
+    // Not leaning over any edge: the face normal itself (or its back, which is never allowed).
+    leans || n.dot(n_t) > 0.0
+}
+
+/// The feature of a triangle facing `d` (unit): its front or back face, an edge, or a corner.
+/// Codes: face 0 (front) or 1 (back), edge `k` (corner `k` to `k + 1`), vertex `k`.
+pub fn triangle_feature(v: &[DVec3; 3], d: DVec3) -> Feature {
+    let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+    let c = n.dot(d);
+    if c >= FACE_COS_TOLERANCE {
+        return Feature { points: v.to_vec(), code: FACE };
+    }
+    if c <= -FACE_COS_TOLERANCE {
+        return Feature { points: vec![v[0], v[2], v[1]], code: FACE | 1 };
+    }
+    let dots = v.map(|p| p.dot(d));
+    let i = if dots[0] >= dots[1] && dots[0] >= dots[2] {
+        0
+    } else if dots[1] >= dots[2] {
+        1
+    } else {
+        2
+    };
+    // The two edges at corner i: edge i (i → i+1) and edge i+2 (i+2 → i).
+    let mut best: Option<(usize, [DVec3; 2], f64)> = None;
+    for (e, other) in [(i, (i + 1) % 3), ((i + 2) % 3, (i + 2) % 3)] {
+        let sine = (v[other] - v[i]).normalize_or_zero().dot(d).abs();
+        if sine <= EDGE_SIN_TOLERANCE && best.is_none_or(|b| sine < b.2) {
+            let pts = if e == i { [v[i], v[other]] } else { [v[other], v[i]] };
+            best = Some((e, pts, sine));
+        }
+    }
+    match best {
+        Some((e, pts, _)) => Feature { points: pts.to_vec(), code: EDGE | e as u16 },
+        None => Feature { points: vec![v[i]], code: VERTEX | i as u16 },
+    }
+}
+
+/// Möller–Trumbore: the distance `t ∈ [0, max_t]` at which the ray `o + t·d` crosses the triangle
+/// (from either side), or `None`.
+#[inline]
+pub fn ray_triangle(o: DVec3, d: DVec3, [p0, p1, p2]: [DVec3; 3], max_t: f64) -> Option<f64> {
+    let (e1, e2) = (p1 - p0, p2 - p0);
+    let pvec = d.cross(e2);
+    let det = e1.dot(pvec);
+    // A ray in the triangle's plane cannot cross it transversally.
+    if det.abs() <= f64::EPSILON * e1.length() * e2.length() {
+        return None;
+    }
+    let inv_det = 1.0 / det;
+    let s = o - p0;
+    let u = s.dot(pvec) * inv_det;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let qvec = s.cross(e1);
+    let v = d.dot(qvec) * inv_det;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(qvec) * inv_det;
+    (t >= 0.0 && t <= max_t).then_some(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TRI: [DVec3; 3] = [DVec3::ZERO, DVec3::X, DVec3::Y];
+
+    #[test]
+    fn features_of_a_triangle() {
+        assert_eq!(triangle_feature(&TRI, DVec3::Z).code, FACE);
+        assert_eq!(triangle_feature(&TRI, -DVec3::Z).points, vec![TRI[0], TRI[2], TRI[1]]);
+        // Along −Y the edge from corner 0 to corner 1 faces the direction.
+        let f = triangle_feature(&TRI, -DVec3::Y);
+        assert_eq!((f.code, f.points.len()), (EDGE, 2));
+        let f = triangle_feature(&TRI, DVec3::new(1.0, -0.5, 0.2).normalize());
+        assert_eq!((f.code, f.points), (VERTEX | 1, vec![DVec3::X]));
+    }
+
+    #[test]
+    fn internal_edge_rule() {
+        let n_t = DVec3::Z;
+        let tilted = DVec3::new(0.0, -0.1, 1.0).normalize(); // leans over edge 0 (along −Y)
+                                                             // Flat neighbour: only the face normal is allowed.
+        assert!(!normal_allowed(&TRI, n_t, &[Some(0.0), Some(0.0), Some(0.0)], tilted));
+        assert!(normal_allowed(&TRI, n_t, &[Some(0.0), Some(0.0), Some(0.0)], n_t));
+        // Boundary: allowed. Convex by 0.2 rad: allowed up to 0.2 rad, not beyond.
+        assert!(normal_allowed(&TRI, n_t, &[None, Some(0.0), Some(0.0)], tilted));
+        assert!(normal_allowed(&TRI, n_t, &[Some(0.2), Some(0.0), Some(0.0)], tilted));
+        let steep = DVec3::new(0.0, -1.0, 1.0).normalize();
+        assert!(!normal_allowed(&TRI, n_t, &[Some(0.2), Some(0.0), Some(0.0)], steep));
+        assert!(!normal_allowed(&TRI, n_t, &[None, None, None], -n_t));
+    }
+
+    #[test]
+    fn ray_hits_either_side() {
+        let o = DVec3::new(0.2, 0.2, 1.0);
+        assert_eq!(ray_triangle(o, -DVec3::Z, TRI, 10.0), Some(1.0));
+        assert_eq!(ray_triangle(-o, DVec3::Z, TRI, 10.0), None);
+        assert_eq!(ray_triangle(o * DVec3::new(1.0, 1.0, -1.0), DVec3::Z, TRI, 10.0), Some(1.0));
+        assert_eq!(ray_triangle(o, -DVec3::Z, TRI, 0.5), None);
+    }
+}
