@@ -24,21 +24,23 @@
 //! index, so they are stable while the same triangle is touched.
 
 use super::aabb::{shape_aabb, Aabb};
-use super::clip::clip_to_face;
+use super::clip::{clip_segment, clip_to_face, ClipVertex};
 use super::convex_contact::collide_convex;
 use super::epa::epa;
-use super::feature::{supporting_feature, FACE_COS_TOLERANCE};
+use super::feature::{supporting_feature, EDGE, EDGE_SIN_TOLERANCE, FACE_COS_TOLERANCE, VERTEX};
 use super::gjk::{gjk, ConvexPair};
-use super::manifold::{ContactPoint, Manifold, MAX_POINTS};
+use super::manifold::{ContactPoint, Manifold};
 use super::support::{Core, Rounded};
 use super::triangle::{edge_bends, has_sharp_edge, normal_allowed, TriangleSource};
-use crate::math::{DVec3, Transform};
+use crate::math::{DMat3, DVec3, Transform};
 use crate::shape::Shape;
 
 /// Candidates whose normal is within this cosine (30°) of the dominant one join the manifold.
 const MERGE_COS: f64 = 0.866;
 /// Separations within this distance (m) of the deepest count as tied for the first point.
 const TIE_DISTANCE: f64 = 1e-5;
+/// Points closer than this (m) to the patch spanned so far add nothing to it.
+const DISTINCT: f64 = 1e-6;
 
 /// A contact point before reduction, in the mesh's local frame.
 #[derive(Clone, Copy, Debug)]
@@ -64,19 +66,30 @@ pub fn collide_triangles_convex<S: TriangleSource + ?Sized>(
     let query: Aabb = shape_aabb(shape, &b_in_a).fattened(margin);
     let mut triangles = Vec::new();
     source.query(&query, &mut |t| triangles.push(t));
+    let rot = DMat3::from_quat(b_in_a.rotation);
+    let frame = Frame { rot, rot_t: rot.transpose() };
     let mut candidates = Vec::new();
     for &t in &triangles {
-        triangle_contact(source, t, &rounded, &b_in_a, margin, &mut candidates);
+        triangle_contact(source, t, &rounded, &b_in_a, &frame, margin, &mut candidates);
     }
     build_manifold(candidates, pose_a, pose_b, margin)
 }
 
+/// The shape's rotation in the mesh frame as matrices (cheaper than quaternions for the many
+/// support queries per triangle).
+struct Frame {
+    rot: DMat3,
+    rot_t: DMat3,
+}
+
 /// Appends the contact candidates of triangle `t` with the shape (at `b_in_a`, mesh frame).
+#[allow(clippy::too_many_arguments)]
 fn triangle_contact<S: TriangleSource + ?Sized>(
     source: &S,
     t: u32,
     shape: &Rounded,
     b_in_a: &Transform,
+    frame: &Frame,
     margin: f64,
     out: &mut Vec<Candidate>,
 ) {
@@ -85,10 +98,19 @@ fn triangle_contact<S: TriangleSource + ?Sized>(
     if n_t == DVec3::ZERO || n_t.dot(b_in_a.translation - v[0]) < 0.0 {
         return; // degenerate, or the shape's centre is behind the triangle
     }
-    let down_local = b_in_a.rotation.inverse() * -n_t;
-    let lowest = b_in_a.transform_point(shape.core.support_local(down_local));
-    if n_t.dot(lowest - v[0]) - shape.radius > margin {
+    // Farthest point of the core along a mesh-frame direction, in the mesh frame.
+    let support = |dir: DVec3| b_in_a.translation + frame.rot * shape.core.support_local(frame.rot_t * dir);
+    let down_local = frame.rot_t * -n_t;
+    if n_t.dot(support(-n_t) - v[0]) - shape.radius > margin {
         return;
+    }
+    // The triangle's edges as separating axes: the triangle lies inside each edge's in-plane
+    // half-space, so a shape entirely beyond one (by more than the margin) cannot touch it.
+    for k in 0..3 {
+        let u = (v[(k + 1) % 3] - v[k]).cross(n_t);
+        if u.dot(support(-u) - v[k]) > (shape.radius + margin) * u.length() {
+            return;
+        }
     }
     let bends = edge_bends(source, t, &v, n_t);
     if has_sharp_edge(&bends) && edge_contact(t, &v, n_t, &bends, shape, b_in_a, margin, out) {
@@ -163,22 +185,79 @@ fn face_contact(
     margin: f64,
     out: &mut Vec<Candidate>,
 ) {
+    // Balls and capsules: their feature is a point or a segment, clipped here without allocating
+    // (the common case for characters and debris on terrain).
+    match shape.core {
+        Core::Point => return point_contact(v, n_t, b_in_a.translation, shape.radius, margin, 0, out),
+        Core::Segment { half_height } => {
+            let d = down_local.normalize_or_zero();
+            let end = |z: f64| b_in_a.transform_point(DVec3::new(0.0, 0.0, z));
+            if d.z.abs() > EDGE_SIN_TOLERANCE {
+                let (z, code) = if d.z > 0.0 { (half_height, VERTEX | 1) } else { (-half_height, VERTEX) };
+                return point_contact(v, n_t, end(z), shape.radius, margin, u32::from(code) << 15, out);
+            }
+            let mut seg =
+                Some([ClipVertex::original(end(-half_height), 0), ClipVertex::original(end(half_height), 1)]);
+            for k in 0..3 {
+                let side = (v[(k + 1) % 3] - v[k]).cross(n_t);
+                seg = seg.and_then(|sg| clip_segment(sg, side, side.dot(v[k]), k));
+            }
+            let code = u32::from(EDGE);
+            for c in seg.into_iter().flatten() {
+                let height = n_t.dot(c.point - v[0]);
+                if height - shape.radius <= margin {
+                    out.push(Candidate {
+                        normal: n_t,
+                        on_b: c.point - n_t * shape.radius,
+                        separation: height - shape.radius,
+                        id: feature_id(t, code, c.tag),
+                    });
+                }
+            }
+            return;
+        }
+        _ => {}
+    }
     let feature = supporting_feature(&shape.core, down_local);
     let incident: Vec<DVec3> = feature.points.iter().map(|&p| b_in_a.transform_point(p)).collect();
     let code = u32::from(feature.code);
     for c in clip_to_face(v, n_t, &incident, margin + shape.radius) {
-        let id = if c.tag < 0x8000 {
-            // A vertex of the shape's own feature: named by the shape alone.
-            (code << 15) | u32::from(c.tag)
-        } else {
-            triangle_id(t, (code << 16) | u32::from(c.tag))
-        };
+        let id = feature_id(t, code, c.tag);
         out.push(Candidate {
             normal: n_t,
             on_b: c.point - n_t * shape.radius,
             separation: c.separation - shape.radius,
             id,
         });
+    }
+}
+
+/// A ball centre or a capsule end `c` (mesh frame) over the triangle, or nothing.
+fn point_contact(
+    v: &[DVec3; 3],
+    n_t: DVec3,
+    c: DVec3,
+    radius: f64,
+    margin: f64,
+    id: u32,
+    out: &mut Vec<Candidate>,
+) {
+    let inside = (0..3).all(|k| (v[(k + 1) % 3] - v[k]).cross(c - v[k]).dot(n_t) >= 0.0);
+    let height = n_t.dot(c - v[0]);
+    if inside && height - radius <= margin {
+        out.push(Candidate { normal: n_t, on_b: c - n_t * radius, separation: height - radius, id });
+    }
+}
+
+/// The id of a face-contact point with clip tag `tag` of the shape's feature `code`: an original
+/// vertex of the feature (a box corner) is named by the shape alone, so it keeps its id from one
+/// triangle to the next; a point cut by a triangle edge also names the triangle.
+#[inline]
+fn feature_id(t: u32, code: u32, tag: u16) -> u32 {
+    if tag < 0x8000 {
+        (code << 15) | u32::from(tag)
+    } else {
+        triangle_id(t, (code << 16) | u32::from(tag))
     }
 }
 
@@ -218,17 +297,20 @@ fn build_manifold(
 }
 
 /// Up to four candidates spanning the patch (see the module docs); areas in the plane normal to
-/// `normal`.
+/// `normal`. Candidates that add nothing to the patch are dropped even when there are few, so a
+/// capsule lying across several triangles keeps just its two ends.
 fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
     let n = c.len();
-    if n <= MAX_POINTS {
+    if n <= 1 {
         return (0..n).collect();
     }
     let flat = |d: DVec3| d - normal * normal.dot(d);
     let min_sep = c.iter().fold(f64::INFINITY, |m, p| m.min(p.separation));
     let centre = c.iter().map(|p| p.on_b).sum::<DVec3>() / n as f64;
-    let argmax = |score: &dyn Fn(usize) -> f64| {
-        let mut best = (usize::MAX, 0.0);
+    // Scores must beat `floor` to count: points that add nothing (inside the patch so far, or on
+    // a line with it) are left out even when there are four or fewer.
+    let argmax_above = |floor: f64, score: &dyn Fn(usize) -> f64| {
+        let mut best = (usize::MAX, floor);
         for i in 0..n {
             let s = score(i);
             if s > best.1 {
@@ -237,6 +319,7 @@ fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
         }
         best.0
     };
+    let argmax = |score: &dyn Fn(usize) -> f64| argmax_above(0.0, score);
     let first = argmax(&|i| {
         if c[i].separation <= min_sep + TIE_DISTANCE {
             1.0 + flat(c[i].on_b - centre).length_squared()
@@ -245,12 +328,13 @@ fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
         }
     });
     let p = |i: usize| c[i].on_b;
-    let second = argmax(&|i| flat(p(i) - p(first)).length_squared());
+    let second = argmax_above(DISTINCT * DISTINCT, &|i| flat(p(i) - p(first)).length_squared());
     if second == usize::MAX {
         return vec![first];
     }
     let area = |a: DVec3, b: DVec3, q: DVec3| (b - a).cross(q - a).dot(normal);
-    let third = argmax(&|i| area(p(first), p(second), p(i)).abs());
+    let min_area = DISTINCT * flat(p(second) - p(first)).length();
+    let third = argmax_above(min_area, &|i| area(p(first), p(second), p(i)).abs());
     if third == usize::MAX {
         return vec![first, second];
     }
@@ -259,7 +343,9 @@ fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
     } else {
         [first, third, second]
     };
-    let fourth = argmax(&|i| (0..3).fold(0.0_f64, |m, k| m.max(-area(p(tri[k]), p(tri[(k + 1) % 3]), p(i)))));
+    let fourth = argmax_above(min_area, &|i| {
+        (0..3).fold(0.0_f64, |m, k| m.max(-area(p(tri[k]), p(tri[(k + 1) % 3]), p(i))))
+    });
     if fourth == usize::MAX {
         vec![first, second, third]
     } else {

@@ -79,19 +79,24 @@ impl TriangleSource for HeightField {
     }
 }
 
-/// The bend of each edge of triangle `t` (see the module docs), `None` for a boundary edge.
+/// The bend of each edge of triangle `t` (see the module docs), `None` for a boundary edge. Flat
+/// and concave edges get a value ≤ 0 (not necessarily their angle: only convex bends are used).
 pub fn edge_bends<S: TriangleSource + ?Sized>(
     source: &S,
     t: u32,
     v: &[DVec3; 3],
     n_t: DVec3,
 ) -> [Option<f64>; 3] {
-    std::array::from_fn(|k| {
-        let nb = source.neighbor(t, k)?;
-        let n_n = source.triangle_normal(nb);
-        let u = (v[(k + 1) % 3] - v[k]).normalize_or_zero().cross(n_t);
-        Some(n_n.dot(u).atan2(n_n.dot(n_t)))
-    })
+    let mut out = [None; 3];
+    for (k, bend) in out.iter_mut().enumerate() {
+        if let Some(nb) = source.neighbor(t, k) {
+            let n_n = source.triangle_normal(nb);
+            let u = (v[(k + 1) % 3] - v[k]).normalize_or_zero().cross(n_t);
+            let y = n_n.dot(u);
+            *bend = Some(if y <= 0.0 { y } else { y.atan2(n_n.dot(n_t)) });
+        }
+    }
+    out
 }
 
 /// True when some edge is a boundary or convex: only then can a contact normal differ from the
