@@ -117,12 +117,11 @@ pub fn normal_allowed(v: &[DVec3; 3], n_t: DVec3, bends: &[Option<f64>; 3], n: D
         }
         leans = true;
         match bends[k] {
+            // A boundary allows any normal leaning over it.
             None => {}
-            Some(phi) if phi > CONVEX_EDGE_ANGLE => {
-                if lean.atan2(n.dot(n_t)) > phi + EDGE_ANGLE_TOLERANCE {
-                    return false;
-                }
-            }
+            // A convex edge: up to its neighbour's normal.
+            Some(phi) if phi > CONVEX_EDGE_ANGLE && lean.atan2(n.dot(n_t)) <= phi + EDGE_ANGLE_TOLERANCE => {}
+            // Flat, concave, or past the neighbour.
             Some(_) => return false,
         }
     }

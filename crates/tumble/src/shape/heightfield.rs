@@ -103,7 +103,7 @@ impl HeightField {
     pub fn triangle_points(&self, t: u32) -> [DVec3; 3] {
         let cell = t as usize / 2;
         let (r, c) = (cell / (self.cols - 1), cell % (self.cols - 1));
-        if t % 2 == 0 {
+        if t.is_multiple_of(2) {
             [self.vertex(r, c), self.vertex(r, c + 1), self.vertex(r + 1, c + 1)]
         } else {
             [self.vertex(r, c), self.vertex(r + 1, c + 1), self.vertex(r + 1, c)]
