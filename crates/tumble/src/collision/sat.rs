@@ -56,7 +56,8 @@ impl SatQuery {
 
 /// An edge pair must beat the best face by this fraction of |separation| (plus an absolute slop).
 const EDGE_REL_TOLERANCE: f64 = 0.1;
-/// Face B must beat face A by this fraction when there is a cached face to keep.
+/// Face axes within this fraction of |separation| (plus slop) count as equally good: the larger
+/// face is then the reference, and a cached face is kept.
 const KEEP_REL_TOLERANCE: f64 = 0.05;
 /// Edges closer than this sine of an angle to parallel give no axis (their faces' normals do).
 const PARALLEL_SINE: f64 = 0.005;
@@ -194,12 +195,21 @@ pub fn collide_polytopes(
         return None;
     }
     let slop = 0.0025_f64.min(0.01 * a.bounding_radius().min(b.bounding_radius()));
-    let mut feature = if q.face_b.1 > q.face_a.1 {
-        SatFeature::FaceB(q.face_b.0 as u32)
-    } else {
-        SatFeature::FaceA(q.face_a.0 as u32)
-    };
     let face_sep = q.face_a.1.max(q.face_b.1);
+    // Between two faces that separate about equally well, the larger one makes the better
+    // reference (a box on the ground clips against the ground, whichever way it is tilted). The
+    // rule looks at both shapes alike, so swapping A and B picks the same physical face.
+    let face_tol = KEEP_REL_TOLERANCE * face_sep.abs() + slop;
+    let (area_a, area_b) = (a.face_area(q.face_a.0), b.face_area(q.face_b.0));
+    let b_wins = if (q.face_a.1 - q.face_b.1).abs() <= face_tol
+        && (area_a - area_b).abs() > 0.01 * area_a.max(area_b)
+    {
+        area_b > area_a
+    } else {
+        q.face_b.1 > q.face_a.1
+    };
+    let mut feature =
+        if b_wins { SatFeature::FaceB(q.face_b.0 as u32) } else { SatFeature::FaceA(q.face_a.0 as u32) };
     if q.edges.2 > face_sep + EDGE_REL_TOLERANCE * face_sep.abs() + slop {
         feature = SatFeature::EdgePair(q.edges.0 as u32, q.edges.1 as u32);
     }
