@@ -260,14 +260,14 @@ proptest! {
         let analytic = gap.min_element() + r;
         let pa = pose(DVec3::new(0.3, 0.2, -0.1), DQuat::from_rotation_z(yaw));
         let pb = pose(pa.transform_point(centre), DQuat::IDENTITY);
-        let m = collide_convex(&Rounded::of(&box_shape).unwrap(), &pa, &Rounded::of(&ball_shape).unwrap(), &pb, 0.0, &mut DVec3::ZERO).unwrap();
+        let m = collide_convex(&Rounded::of(&box_shape).unwrap(), &pa, &Rounded::of(&ball_shape).unwrap(), &pb, 0.0, &mut { DVec3::ZERO }).unwrap();
         prop_assert!((m.min_separation() + analytic).abs() < 1e-7, "epa {} analytic {}", -m.min_separation(), analytic);
         let closed = collide_fresh(&box_shape, &pa, &ball_shape, &pb, 0.0).unwrap();
         prop_assert!((closed.min_separation() + analytic).abs() < 1e-12);
 
         let small = cuboid(0.2, 0.15, 0.1);
         let pc = pose(pa.transform_point(DVec3::new(0.5 * c.0 * (he.x - 0.3).max(0.0), 0.5 * c.1 * (he.y - 0.3).max(0.0), he.z + 0.1 - depth)), pa.rotation * DQuat::from_rotation_z(c.2));
-        let m = collide_convex(&Rounded::of(&box_shape).unwrap(), &pa, &Rounded::of(&small).unwrap(), &pc, 0.0, &mut DVec3::ZERO).unwrap();
+        let m = collide_convex(&Rounded::of(&box_shape).unwrap(), &pa, &Rounded::of(&small).unwrap(), &pc, 0.0, &mut { DVec3::ZERO }).unwrap();
         prop_assert!((m.min_separation() + depth).abs() < 1e-7, "epa {} analytic {}", -m.min_separation(), depth);
         prop_assert!((m.normal_world - pa.rotation * DVec3::Z).length() < 1e-6);
     }
