@@ -15,6 +15,8 @@ fn main() {
     let solver = SolverSettings {
         substeps: setting("SUBSTEPS", 4.0) as u32,
         contact_hertz: setting("CONTACT_HERTZ", 30.0),
+        solve_iterations: setting("SOLVE_ITERATIONS", 1.0) as u32,
+        relax_iterations: setting("RELAX_ITERATIONS", 1.0) as u32,
         ..Default::default()
     };
     let mut world = World::new(WorldDef { solver, ..Default::default() }).expect("valid settings");
