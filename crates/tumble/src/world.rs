@@ -73,6 +73,8 @@ pub struct World {
     pub(crate) contact_constraints: Vec<ContactConstraint>,
     pub(crate) gravity: DVec3,
     pub(crate) time: f64,
+    /// The low-order bits lost from `time` by the last addition (Kahan summation).
+    pub(crate) time_compensation: f64,
     pub(crate) step_count: u64,
 }
 
@@ -129,6 +131,7 @@ impl World {
             contact_constraints: Vec::new(),
             gravity: check_vec("gravity", def.gravity)?,
             time: 0.0,
+            time_compensation: 0.0,
             step_count: 0,
         })
     }
