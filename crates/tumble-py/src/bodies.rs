@@ -64,6 +64,8 @@ impl BodyArgs<'_, '_> {
             angular_damping: self.angular_damping,
             gravity_scale: self.gravity_scale,
             allow_sleep: self.allow_sleep,
+            // Settings the Python API does not take yet keep the core's defaults.
+            ..BodyDef::default()
         })
     }
 }

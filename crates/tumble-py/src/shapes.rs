@@ -46,10 +46,7 @@ impl Shape {
                 format!("TriMesh({} vertices, {} triangles)", m.vertices().len(), m.triangles().len())
             }
             tumble::Shape::Compound(c) => format!("Compound({} parts)", c.children().len()),
-            tumble::Shape::Plane(p) => {
-                format!("Plane(normal={:?}, offset={})", p.normal.to_array(), p.offset)
-            }
-            tumble::Shape::HeightField(h) => format!("HeightField({} x {} samples)", h.rows(), h.cols()),
+            other => format!("{}(…)", other.kind_name()),
         }
     }
 
@@ -83,8 +80,8 @@ pub fn shape_to_py(py: Python<'_>, shape: &tumble::Shape) -> PyResult<Py<PyAny>>
         tumble::Shape::Cone(_) => new_shape(py, s, ConeShape),
         tumble::Shape::TriMesh(_) => new_shape(py, s, TriMeshShape),
         tumble::Shape::Compound(_) => new_shape(py, s, CompoundShape),
-        // No dedicated Python classes yet: the base class carries them.
-        tumble::Shape::Plane(_) | tumble::Shape::HeightField(_) => Ok(Py::new(py, Shape(s))?.into_any()),
+        // Shapes without a Python class of their own yet come back as the base class.
+        _ => Ok(Py::new(py, Shape(s))?.into_any()),
     }
 }
 

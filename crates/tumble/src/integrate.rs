@@ -41,7 +41,7 @@ fn rotate_about_principal_axis(
     let (hs, hc) = (0.5 * angle).sin_cos();
     let mut q_axis = DVec3::ZERO;
     q_axis[axis] = hs;
-    *rotation = *rotation * DQuat::from_xyzw(q_axis.x, q_axis.y, q_axis.z, hc);
+    *rotation *= DQuat::from_xyzw(q_axis.x, q_axis.y, q_axis.z, hc);
 }
 
 /// Advances a free rigid rotation by `h` with the symmetric splitting. `rotation` maps the principal

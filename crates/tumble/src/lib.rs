@@ -13,6 +13,7 @@ pub mod integrate;
 pub mod mass;
 pub mod math;
 pub mod shape;
+mod state_hash;
 mod step;
 pub mod world;
 

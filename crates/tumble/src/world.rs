@@ -11,7 +11,7 @@ use crate::dynamics::solver::SolverSettings;
 use crate::dynamics::solver_body::SolverBody;
 use crate::id::{BodyId, JointId, SlotPool};
 use crate::mass::{MassError, MassProperties};
-use crate::math::{is_finite_vec, DMat3, DVec3};
+use crate::math::{is_finite_vec, mat3_max_abs, DMat3, DVec3};
 
 /// Settings a world starts with.
 #[derive(Clone, Debug, PartialEq)]
@@ -73,6 +73,8 @@ pub struct World {
     pub(crate) contact_constraints: Vec<ContactConstraint>,
     pub(crate) gravity: DVec3,
     pub(crate) time: f64,
+    /// The low-order bits lost from `time` by the last addition (Kahan summation).
+    pub(crate) time_compensation: f64,
     pub(crate) step_count: u64,
 }
 
@@ -138,6 +140,7 @@ impl World {
             contact_constraints: Vec::new(),
             gravity: check_vec("gravity", def.gravity)?,
             time: 0.0,
+            time_compensation: 0.0,
             step_count: 0,
         })
     }
@@ -221,7 +224,8 @@ impl World {
         }
         let mass_properties = Self::resolve_mass(&def)?;
         let principal = mass_properties.principal();
-        if def.kind == BodyKind::Dynamic && !(principal.moments.min_element() > 0.0) {
+        let smallest = principal.moments.min_element();
+        if def.kind == BodyKind::Dynamic && (smallest.is_nan() || smallest <= 0.0) {
             return Err(invalid(format!(
                 "a dynamic body needs positive principal moments of inertia, got {}",
                 principal.moments
@@ -242,9 +246,7 @@ impl World {
                 && mp.mass > 0.0
                 && is_finite_vec(mp.center_of_mass)
                 && mp.inertia.is_finite()
-                && (mp.inertia - mp.inertia.transpose()).abs().to_cols_array().iter().all(|&e| {
-                    e <= 1e-9 * mp.inertia.abs().to_cols_array().iter().cloned().fold(0.0, f64::max)
-                });
+                && mat3_max_abs(mp.inertia - mp.inertia.transpose()) <= 1e-9 * mat3_max_abs(mp.inertia);
             if !ok {
                 return Err(WorldError::InvalidBody {
                     body: def.name.clone(),

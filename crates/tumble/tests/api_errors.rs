@@ -105,3 +105,13 @@ fn static_and_kinematic_bodies_ignore_forces_and_keep_their_motion() {
     assert!(l.orientation().dot(expected).abs() > 1.0 - 1e-12);
     assert_eq!(world.kinetic_energy(), 0.0, "only dynamic bodies carry energy");
 }
+
+#[test]
+fn simulated_time_does_not_drift() {
+    let mut world = World::default();
+    for _ in 0..72_000 {
+        world.step(1.0 / 240.0).unwrap();
+    }
+    assert_eq!(world.time(), 300.0, "72,000 steps of 1/240 s are exactly 300 s");
+    assert_eq!(world.step_count(), 72_000);
+}

@@ -13,6 +13,8 @@
 //! GJK may stop with a point, segment or triangle when the origin lies on it (touching cores); the
 //! simplex is then "blown up" to a tetrahedron with extra support points first.
 
+use std::collections::HashMap;
+
 use super::gjk::{ConvexPair, Simplex, SupportPoint};
 use crate::math::DVec3;
 
@@ -36,8 +38,10 @@ struct Face {
 }
 
 const MAX_ITERATIONS: usize = 128;
+/// A polytope this large has stopped converging; its nearest face is as good as it gets.
+const MAX_FACES: usize = 1024;
 /// Converged when the support along the nearest face's normal is within this (× scale) of it.
-const REL_TOLERANCE: f64 = 1e-9;
+const REL_TOLERANCE: f64 = 1e-7;
 
 /// Penetration depth and normal from GJK's final simplex. `None` only if `A − B` is flat (both
 /// cores lower-dimensional, e.g. two segments), where depth is not defined by a polytope.
@@ -51,48 +55,26 @@ pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
     if n012.dot(verts[3].w - verts[0].w) > 0.0 {
         verts.swap(1, 2);
     }
-    let mut faces: Vec<Face> =
-        [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]].iter().map(|&v| make_face(&verts, v)).collect();
-
-    let mut best = 0;
+    let mut poly = Polytope::default();
+    for v in [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]] {
+        poly.add_face(&verts, v);
+    }
+    let mut best = poly.nearest_face();
     for _ in 0..MAX_ITERATIONS {
-        best = nearest_face(&faces);
-        let face = faces[best];
+        let face = poly.faces[best];
         let p = pair.support(face.normal);
-        if face.normal.dot(p.w) - face.distance <= tol {
+        if face.normal.dot(p.w) - face.distance <= tol || poly.faces.len() > MAX_FACES {
             break;
         }
         let new_index = verts.len();
         verts.push(p);
-        // Remove every face that sees the new point; collect the horizon as the edges that only
-        // one removed face owns (an edge of two removed faces appears once in each direction).
-        let mut horizon: Vec<(usize, usize)> = Vec::new();
-        faces.retain(|f| {
-            let sees = f.normal.dot(p.w - verts[f.v[0]].w) > 0.0;
-            if sees {
-                for k in 0..3 {
-                    let (a, b) = (f.v[k], f.v[(k + 1) % 3]);
-                    if let Some(i) = horizon.iter().position(|&e| e == (b, a)) {
-                        horizon.swap_remove(i);
-                    } else {
-                        horizon.push((a, b));
-                    }
-                }
-            }
-            !sees
-        });
-        if horizon.is_empty() {
-            // Numerically stuck: the point was not beyond any face after all.
-            verts.pop();
-            best = nearest_face(&faces);
-            break;
-        }
+        let horizon = poly.carve(&verts, best, p.w, 1e-12 * scale);
         for (a, b) in horizon {
-            faces.push(make_face(&verts, [a, b, new_index]));
+            poly.add_face(&verts, [a, b, new_index]);
         }
-        best = nearest_face(&faces);
+        best = poly.nearest_face();
     }
-    let face = faces[best];
+    let face = poly.faces[best];
     let lam = barycentric(face.normal * face.distance, face.v.map(|i| verts[i].w));
     let mut point_a = DVec3::ZERO;
     let mut point_b = DVec3::ZERO;
@@ -103,24 +85,75 @@ pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
     Some(EpaResult { depth: face.distance.max(0.0), normal: face.normal, point_a, point_b })
 }
 
-fn make_face(verts: &[SupportPoint], v: [usize; 3]) -> Face {
-    let [a, b, c] = v.map(|i| verts[i].w);
-    let n = (b - a).cross(c - a);
-    match n.try_normalize() {
-        Some(normal) => Face { v, normal, distance: normal.dot(a) },
-        // A sliver face has no direction; never pick it as the nearest.
-        None => Face { v, normal: DVec3::ZERO, distance: f64::INFINITY },
-    }
+/// The polytope's surface: triangles (dead ones kept so indices stay valid) and a map from each
+/// directed edge to the face that owns it, for walking to neighbours.
+#[derive(Default)]
+struct Polytope {
+    faces: Vec<Face>,
+    alive: Vec<bool>,
+    edge_owner: HashMap<(usize, usize), usize>,
 }
 
-fn nearest_face(faces: &[Face]) -> usize {
-    let mut best = 0;
-    for (i, f) in faces.iter().enumerate() {
-        if f.distance < faces[best].distance {
-            best = i;
+impl Polytope {
+    fn add_face(&mut self, verts: &[SupportPoint], v: [usize; 3]) {
+        let [a, b, c] = v.map(|i| verts[i].w);
+        let face = match (b - a).cross(c - a).try_normalize() {
+            Some(normal) => Face { v, normal, distance: normal.dot(a) },
+            // A sliver face has no direction; never pick it as the nearest.
+            None => Face { v, normal: DVec3::ZERO, distance: f64::INFINITY },
+        };
+        for k in 0..3 {
+            self.edge_owner.insert((v[k], v[(k + 1) % 3]), self.faces.len());
         }
+        self.faces.push(face);
+        self.alive.push(true);
     }
-    best
+
+    fn nearest_face(&self) -> usize {
+        let mut best = usize::MAX;
+        for (i, f) in self.faces.iter().enumerate() {
+            if self.alive[i] && (best == usize::MAX || f.distance < self.faces[best].distance) {
+                best = i;
+            }
+        }
+        best
+    }
+
+    /// Removes the faces that see `p` — flooding out from `start`, so the hole is connected —
+    /// and returns the hole's boundary edges, wound like the removed faces. Faces that `p` is
+    /// within `eps` of count as not seeing it: on flat patches (a cylinder's cap) support points
+    /// are coplanar, and letting round-off decide would scatter the hole and ruin the polytope.
+    fn carve(&mut self, verts: &[SupportPoint], start: usize, p: DVec3, eps: f64) -> Vec<(usize, usize)> {
+        let sees = |f: &Face| f.normal.dot(p - verts[f.v[0]].w) > eps;
+        let mut visible = vec![start];
+        self.alive[start] = false;
+        let mut k = 0;
+        let mut horizon = Vec::new();
+        while k < visible.len() {
+            let f = self.faces[visible[k]];
+            k += 1;
+            for e in 0..3 {
+                let (a, b) = (f.v[e], f.v[(e + 1) % 3]);
+                match self.edge_owner.get(&(b, a)) {
+                    Some(&g) if self.alive[g] && sees(&self.faces[g]) => {
+                        self.alive[g] = false;
+                        visible.push(g);
+                    }
+                    Some(&g) if self.alive[g] => horizon.push((a, b)),
+                    _ => {}
+                }
+            }
+        }
+        for &f in &visible {
+            let v = self.faces[f].v;
+            for e in 0..3 {
+                if self.edge_owner.get(&(v[e], v[(e + 1) % 3])) == Some(&f) {
+                    self.edge_owner.remove(&(v[e], v[(e + 1) % 3]));
+                }
+            }
+        }
+        horizon
+    }
 }
 
 /// Barycentric weights of `p` (on the triangle's plane) in triangle `t`, clamped to the triangle.

@@ -128,7 +128,11 @@ fn polytope_feature(p: &Polytope, d: DVec3) -> Feature {
         };
         let vo = p.vertex(other as usize);
         let sine = (vo - vi).normalize().dot(d).abs();
-        if sine <= EDGE_SIN_TOLERANCE && best.map_or(true, |b| sine < b.2) {
+        let better = match best {
+            Some(b) => sine < b.2,
+            None => true,
+        };
+        if sine <= EDGE_SIN_TOLERANCE && better {
             best = Some((e, vo, sine));
         }
     }

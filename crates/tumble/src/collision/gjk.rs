@@ -135,12 +135,12 @@ pub fn gjk(pair: &ConvexPair, initial_dir: DVec3) -> GjkResult {
         let mut reduced = Simplex::default();
         let mut new_lambda = [0.0; 4];
         let mut new_v = DVec3::ZERO;
-        for i in 0..candidate.len {
+        for (i, (point, weight)) in candidate.as_slice().iter().zip(lam).enumerate() {
             if mask & (1 << i) != 0 {
-                reduced.points[reduced.len] = candidate.points[i];
-                new_lambda[reduced.len] = lam[i];
+                reduced.points[reduced.len] = *point;
+                new_lambda[reduced.len] = weight;
                 reduced.len += 1;
-                new_v += candidate.points[i].w * lam[i];
+                new_v += point.w * weight;
             }
         }
         // Round-off can stall progress near convergence; keep the better of the two.

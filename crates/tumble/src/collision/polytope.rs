@@ -79,6 +79,17 @@ impl Polytope<'_> {
         }
     }
 
+    /// Area of face `f`.
+    pub fn face_area(&self, f: usize) -> f64 {
+        let vs = self.face_vertices(f);
+        let o = self.vertex(vs[0] as usize);
+        let mut twice = DVec3::ZERO;
+        for k in 1..vs.len() - 1 {
+            twice += (self.vertex(vs[k] as usize) - o).cross(self.vertex(vs[k + 1] as usize) - o);
+        }
+        0.5 * twice.length()
+    }
+
     /// Vertex loop of face `f`, counter-clockwise seen from outside.
     #[inline]
     pub fn face_vertices(&self, f: usize) -> &[u32] {

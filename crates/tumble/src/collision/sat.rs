@@ -20,6 +20,7 @@ use super::manifold::{ContactPoint, Manifold};
 use super::polytope::Polytope;
 use super::segment::closest_segment_segment;
 use crate::math::{DVec3, Transform};
+use crate::shape::HullEdge;
 
 /// Which axis separated (or least penetrated) last time.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -56,7 +57,8 @@ impl SatQuery {
 
 /// An edge pair must beat the best face by this fraction of |separation| (plus an absolute slop).
 const EDGE_REL_TOLERANCE: f64 = 0.1;
-/// Face B must beat face A by this fraction when there is a cached face to keep.
+/// Face axes within this fraction of |separation| (plus slop) count as equally good: the larger
+/// face is then the reference, and a cached face is kept.
 const KEEP_REL_TOLERANCE: f64 = 0.05;
 /// Edges closer than this sine of an angle to parallel give no axis (their faces' normals do).
 const PARALLEL_SINE: f64 = 0.005;
@@ -93,45 +95,32 @@ impl<'p, 'h> Frames<'p, 'h> {
         n.dot(self.a.vertex(self.a.support_index(-n)) - on_face)
     }
 
-    /// Separation along the cross product of edge `ea` of A and `eb` of B, or `None` when the
-    /// pair is pruned (not a Minkowski face) or the edges are parallel.
-    fn edge_pair(&self, ea: usize, eb: usize) -> Option<(f64, DVec3)> {
-        let edge_a = self.a.edges()[ea];
-        let edge_b = self.b.edges()[eb];
-        let (ua, va) =
-            (self.a.face_normal(edge_a.faces[0] as usize), self.a.face_normal(edge_a.faces[1] as usize));
-        let (ub, vb) = (self.normals_b[edge_b.faces[0] as usize], self.normals_b[edge_b.faces[1] as usize]);
-        if !is_minkowski_face(ua, va, -ub, -vb) {
-            return None;
-        }
-        let pa = self.a.vertex(edge_a.vertices[0] as usize);
-        let da = self.a.vertex(edge_a.vertices[1] as usize) - pa;
-        let pb = self.verts_b[edge_b.vertices[0] as usize];
-        let db = self.verts_b[edge_b.vertices[1] as usize] - pb;
-        let axis = da.cross(db);
-        let len = axis.length();
-        if len < PARALLEL_SINE * (da.length_squared() * db.length_squared()).sqrt() {
-            return None;
-        }
-        let mut n = axis / len;
-        if n.dot(pa - self.a.interior_point()) < 0.0 {
-            n = -n;
-        }
-        Some((n.dot(pb - pa), n))
-    }
-
     fn query(&self) -> SatQuery {
         let best = |count: usize, f: &dyn Fn(usize) -> f64| {
             (0..count).map(|i| (i, f(i))).fold((0, f64::NEG_INFINITY), |m, x| if x.1 > m.1 { x } else { m })
         };
         let face_a = best(self.a.face_count(), &|f| self.face_a(f));
         let face_b = best(self.b.face_count(), &|f| self.face_b(f));
+        // Edge data gathered once, so the E_A × E_B loop is plain arithmetic.
+        let edges_a: Vec<EdgeData> = self.a.edges().iter().map(|e| EdgeData::of_a(self, e)).collect();
+        let edges_b: Vec<EdgeData> = self.b.edges().iter().map(|e| EdgeData::of_b(self, e)).collect();
+        let centre_a = self.a.interior_point();
         let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
-        for ea in 0..self.a.edges().len() {
-            for eb in 0..self.b.edges().len() {
-                if let Some((s, n)) = self.edge_pair(ea, eb) {
-                    if s > edges.2 {
-                        edges = (ea, eb, s, n);
+        for (ia, ea) in edges_a.iter().enumerate() {
+            for (ib, eb) in edges_b.iter().enumerate() {
+                // The Minkowski-face test with the edge directions standing in for the normals'
+                // cross products (faces[0].normal × faces[1].normal points along the edge), and
+                // B's normals negated for the difference A − B.
+                let cba = eb.u.dot(ea.dir);
+                let dba = eb.v.dot(ea.dir);
+                let adc = ea.u.dot(eb.dir);
+                let bdc = ea.v.dot(eb.dir);
+                if !(cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc < 0.0) {
+                    continue;
+                }
+                if let Some((sep, n)) = edge_axis(ea.start, ea.dir, eb.start, eb.dir, centre_a) {
+                    if sep > edges.2 {
+                        edges = (ia, ib, sep, n);
                     }
                 }
             }
@@ -140,17 +129,49 @@ impl<'p, 'h> Frames<'p, 'h> {
     }
 }
 
-/// Do the Gauss-map arcs `a → b` and `c → d` (unit normals) cross? They do when c and d lie on
-/// opposite sides of the plane through a and b, a and b on opposite sides of the plane through c
-/// and d, and both arcs lie in the same hemisphere (the last sign test).
-fn is_minkowski_face(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
-    let b_x_a = b.cross(a);
-    let d_x_c = d.cross(c);
-    let cba = c.dot(b_x_a);
-    let dba = d.dot(b_x_a);
-    let adc = a.dot(d_x_c);
-    let bdc = b.dot(d_x_c);
-    cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0
+/// One edge with its two face normals, in A's frame.
+struct EdgeData {
+    start: DVec3,
+    dir: DVec3,
+    u: DVec3,
+    v: DVec3,
+}
+
+impl EdgeData {
+    fn of_a(f: &Frames, e: &HullEdge) -> EdgeData {
+        let start = f.a.vertex(e.vertices[0] as usize);
+        EdgeData {
+            start,
+            dir: f.a.vertex(e.vertices[1] as usize) - start,
+            u: f.a.face_normal(e.faces[0] as usize),
+            v: f.a.face_normal(e.faces[1] as usize),
+        }
+    }
+
+    fn of_b(f: &Frames, e: &HullEdge) -> EdgeData {
+        let start = f.verts_b[e.vertices[0] as usize];
+        EdgeData {
+            start,
+            dir: f.verts_b[e.vertices[1] as usize] - start,
+            u: f.normals_b[e.faces[0] as usize],
+            v: f.normals_b[e.faces[1] as usize],
+        }
+    }
+}
+
+/// Separation of two edges along their common normal, oriented out of A (away from A's
+/// interior point `centre_a`); `None` for nearly parallel edges, whose axis a face normal covers.
+fn edge_axis(pa: DVec3, da: DVec3, pb: DVec3, db: DVec3, centre_a: DVec3) -> Option<(f64, DVec3)> {
+    let axis = da.cross(db);
+    let len = axis.length();
+    if len < PARALLEL_SINE * (da.length_squared() * db.length_squared()).sqrt() {
+        return None;
+    }
+    let mut n = axis / len;
+    if n.dot(pa - centre_a) < 0.0 {
+        n = -n;
+    }
+    Some((n.dot(pb - pa), n))
 }
 
 /// The separating-axis queries alone (for tests and diagnostics).
@@ -194,12 +215,21 @@ pub fn collide_polytopes(
         return None;
     }
     let slop = 0.0025_f64.min(0.01 * a.bounding_radius().min(b.bounding_radius()));
-    let mut feature = if q.face_b.1 > q.face_a.1 {
-        SatFeature::FaceB(q.face_b.0 as u32)
-    } else {
-        SatFeature::FaceA(q.face_a.0 as u32)
-    };
     let face_sep = q.face_a.1.max(q.face_b.1);
+    // Between two faces that separate about equally well, the larger one makes the better
+    // reference (a box on the ground clips against the ground, whichever way it is tilted). The
+    // rule looks at both shapes alike, so swapping A and B picks the same physical face.
+    let face_tol = KEEP_REL_TOLERANCE * face_sep.abs() + slop;
+    let (area_a, area_b) = (a.face_area(q.face_a.0), b.face_area(q.face_b.0));
+    let b_wins = if (q.face_a.1 - q.face_b.1).abs() <= face_tol
+        && (area_a - area_b).abs() > 0.01 * area_a.max(area_b)
+    {
+        area_b > area_a
+    } else {
+        q.face_b.1 > q.face_a.1
+    };
+    let mut feature =
+        if b_wins { SatFeature::FaceB(q.face_b.0 as u32) } else { SatFeature::FaceA(q.face_a.0 as u32) };
     if q.edges.2 > face_sep + EDGE_REL_TOLERANCE * face_sep.abs() + slop {
         feature = SatFeature::EdgePair(q.edges.0 as u32, q.edges.1 as u32);
     }
@@ -303,6 +333,21 @@ fn edge_contact(
 mod tests {
     use super::*;
     use crate::math::DQuat;
+
+    /// The reference form of the test, with explicit cross products (the loop in `query` uses
+    /// edge directions in their place).
+    /// Do the Gauss-map arcs `a → b` and `c → d` (unit normals) cross? They do when c and d lie on
+    /// opposite sides of the plane through a and b, a and b on opposite sides of the plane through c
+    /// and d, and both arcs lie in the same hemisphere (the last sign test).
+    fn is_minkowski_face(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
+        let b_x_a = b.cross(a);
+        let d_x_c = d.cross(c);
+        let cba = c.dot(b_x_a);
+        let dba = d.dot(b_x_a);
+        let adc = a.dot(d_x_c);
+        let bdc = b.dot(d_x_c);
+        cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0
+    }
 
     #[test]
     fn minkowski_face_arcs() {

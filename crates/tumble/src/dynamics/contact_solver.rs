@@ -120,7 +120,6 @@ impl ContactConstraint {
     ) -> ContactConstraint {
         let hertz =
             if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
-        let gravity = ctx.gravity.length();
         let (qa_inv, qb_inv) = (a.q.inverse(), b.q.inverse());
         let mut constraint = ContactConstraint {
             key,
@@ -146,14 +145,7 @@ impl ContactConstraint {
             let kt = tangent_projector * k * tangent_projector + outer(normal, normal);
             let relative_velocity = normal.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
             let normal_mass = if kn > 0.0 { 1.0 / kn } else { 0.0 };
-            // Load-aware stiffness. A soft contact is a spring of stiffness m·ω² for the point's
-            // effective mass m; under a load M (the weight of a stack above, read from last step's
-            // impulse) it would sag by M·g/(m·ω²) — centimetres at the foot of a tall stack. Sizing
-            // the spring for the mass it carries, k = max(m, M)·ω², keeps the sag at g/ω² per
-            // contact and the loaded system ringing at the chosen frequency.
-            let load_mass = if gravity > 0.0 { input.impulse.normal / (ctx.h * gravity) } else { 0.0 };
-            let ratio = if normal_mass > 0.0 { (load_mass / normal_mass).max(1.0).min(1.0) } else { 1.0 };
-            let softness = Softness::new(hertz * ratio.sqrt(), ctx.contact_damping_ratio, ctx.h);
+            let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
             *pc = PointConstraint {
                 softness,
                 r_a_local: qa_inv * r_a,

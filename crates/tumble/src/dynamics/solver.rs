@@ -71,8 +71,6 @@ impl Default for SolverSettings {
 /// Per-step constants every stage reads.
 #[derive(Clone, Debug)]
 pub(crate) struct StepContext {
-    pub dt: f64,
-    pub inv_dt: f64,
     /// Substep length.
     pub h: f64,
     pub inv_h: f64,
@@ -99,8 +97,6 @@ impl StepContext {
         // the substeps and starts to ring; cap it there.
         let max_hertz = 0.25 / h;
         StepContext {
-            dt,
-            inv_dt: 1.0 / dt,
             h,
             inv_h: 1.0 / h,
             substeps,

@@ -1,0 +1,44 @@
+//! Narrow-phase cost per pair: a box resting on a box (SAT + clipping, 4 points, warm cache), and
+//! two 20-point random hulls touching (SAT over hull faces and Gauss-map edge pairs).
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use tumble::collision::{collide, PairCache};
+use tumble::{ConvexHull, Cuboid, DQuat, DVec3, Shape, Transform};
+
+fn random_hull(seed: u64) -> ConvexHull {
+    let mut s = seed | 1;
+    let mut rnd = || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let pts: Vec<DVec3> = (0..20).map(|_| DVec3::new(rnd(), rnd(), rnd()).normalize() * 0.5).collect();
+    ConvexHull::new(&pts).expect("random points on a sphere have a hull")
+}
+
+fn bench(c: &mut Criterion) {
+    let ground = Shape::Cuboid(Cuboid::new(DVec3::new(5.0, 5.0, 0.5)).unwrap());
+    let cube = Shape::Cuboid(Cuboid::new(DVec3::splat(0.5)).unwrap());
+    let pose_cube = Transform::new(DVec3::new(0.1, 0.2, 0.995), DQuat::from_rotation_z(0.3));
+    let mut cache = PairCache::default();
+    c.bench_function("box_box_resting", |b| {
+        b.iter(|| {
+            collide(black_box(&ground), &Transform::IDENTITY, black_box(&cube), &pose_cube, 0.02, &mut cache)
+        })
+    });
+
+    let (ha, hb) = (Shape::ConvexHull(random_hull(7)), Shape::ConvexHull(random_hull(11)));
+    // Place B just touching A along X: find the gap with a far-apart query, then close it.
+    let q = DQuat::from_rotation_y(0.4);
+    let mut pose_b = Transform::new(DVec3::new(2.0, 0.1, 0.05), q);
+    let far = collide(&ha, &Transform::IDENTITY, &hb, &pose_b, 10.0, &mut PairCache::default()).unwrap();
+    pose_b.translation -= far.normal_world * (far.min_separation() + 0.005);
+    let mut cache = PairCache::default();
+    c.bench_function("hull_hull_touching", |b| {
+        b.iter(|| collide(black_box(&ha), &Transform::IDENTITY, black_box(&hb), &pose_b, 0.02, &mut cache))
+    });
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
