@@ -335,6 +335,23 @@ fn sphere_rolls_to_rest_on_heightfield_and_plane() {
 }
 
 #[test]
+fn bounds_of_static_shapes() {
+    use tumble::collision::shape_aabb;
+    // An axis-aligned floor is bounded at its surface; a tilted plane fills the extent cube.
+    let b = shape_aabb(&floor_plane(), &at(0.0, 0.0, 2.0));
+    assert_eq!(b.max.z, 2.0);
+    assert_eq!(b.min.z, -tumble::shape::PLANE_EXTENT);
+    let tilted = Shape::Plane(Plane::new(DVec3::new(0.0, 1.0, 1.0), 0.0).unwrap());
+    assert_eq!(shape_aabb(&tilted, &Transform::IDENTITY).max.z, tumble::shape::PLANE_EXTENT);
+    // A height field: centred, its height range in z, moved by its pose.
+    let h = HeightField::new(vec![0.0, 1.0, -2.0, 0.5, 0.0, 0.0], 2, 3, DVec3::new(1.0, 2.0, 0.5)).unwrap();
+    let b = shape_aabb(&Shape::HeightField(h.clone()), &at(10.0, 0.0, 0.0));
+    assert_eq!((b.min, b.max), (DVec3::new(9.0, -1.0, -1.0), DVec3::new(11.0, 1.0, 0.5)));
+    assert_eq!(h.vertex(1, 2), DVec3::new(1.0, 1.0, 0.0));
+    assert_eq!(h.vertex(0, 2), DVec3::new(1.0, -1.0, -1.0));
+}
+
+#[test]
 fn bad_input_is_rejected_with_clear_errors() {
     // Meshes.
     let mut v = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
