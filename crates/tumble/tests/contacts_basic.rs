@@ -60,15 +60,17 @@ fn c1_tumbling_box_corner_impact_stops_the_corner() {
         })
         .unwrap();
 
-    let corner_state = |world: &World| {
-        let b = world.body(body).unwrap();
-        let world_corners: Vec<DVec3> = local_corners.iter().map(|c| b.transform().transform_point(*c)).collect();
-        let (i, p) = world_corners
-            .iter()
-            .enumerate()
-            .fold((0, DVec3::splat(f64::INFINITY)), |a, (i, p)| if p.z < a.1.z { (i, *p) } else { a });
-        (i, p, b.point_velocity(p))
-    };
+    let corner_state =
+        |world: &World| {
+            let b = world.body(body).unwrap();
+            let world_corners: Vec<DVec3> =
+                local_corners.iter().map(|c| b.transform().transform_point(*c)).collect();
+            let (i, p) = world_corners
+                .iter()
+                .enumerate()
+                .fold((0, DVec3::splat(f64::INFINITY)), |a, (i, p)| if p.z < a.1.z { (i, *p) } else { a });
+            (i, p, b.point_velocity(p))
+        };
     // The step that first loads the contact closes most of the gap speculatively (it may leave a
     // fraction of a millimetre, and with it an allowed approach of gap/h); the corner has landed
     // once it is within 0.1 mm of the ground.
@@ -201,7 +203,10 @@ fn c5_box_on_incline_sticks_or_slides() {
     let (_, _, a) = box_on_incline(theta, mu, 3.0);
     let exact = G * (theta.sin() - mu * theta.cos());
     let error = (a - exact) / exact;
-    println!("C5: 35°, μ = {mu}: acceleration {a:.5} m/s², g(sinθ − μcosθ) = {exact:.5} m/s² ({:+.3}%)", 100.0 * error);
+    println!(
+        "C5: 35°, μ = {mu}: acceleration {a:.5} m/s², g(sinθ − μcosθ) = {exact:.5} m/s² ({:+.3}%)",
+        100.0 * error
+    );
     assert!(drift < 1e-3, "drift {drift} m");
     assert!(error.abs() < 0.02, "acceleration error {:.3}%", 100.0 * error);
 }

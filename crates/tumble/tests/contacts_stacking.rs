@@ -28,7 +28,13 @@ fn stack(settings: SolverSettings, n: usize) -> (f64, usize, bool, f64) {
 /// The setting that passes C7 and C8: 16 substeps, contact hertz 240 (the cap at 16 substeps),
 /// two solve and two relax iterations.
 fn stiff_settings() -> SolverSettings {
-    SolverSettings { substeps: 16, contact_hertz: 240.0, solve_iterations: 2, relax_iterations: 2, ..Default::default() }
+    SolverSettings {
+        substeps: 16,
+        contact_hertz: 240.0,
+        solve_iterations: 2,
+        relax_iterations: 2,
+        ..Default::default()
+    }
 }
 
 /// C7: a vertical stack of 10 unit boxes, dt = 1/60: after 10 s every box is within 1 mm of its
@@ -41,7 +47,10 @@ fn stiff_settings() -> SolverSettings {
 #[ignore = "fails at the defaults: drift 32.6 mm vs 1 mm; passes with 16 substeps, 240 Hz, 2+2 iterations (c7_box_stack_with_stiff_settings)"]
 fn c7_box_stack_holds_and_sleeps() {
     let (drift, index, asleep, rate) = stack(SolverSettings::default(), 10);
-    println!("C7 (defaults): largest drift {:.3} mm (box {index}), asleep {asleep}, {rate:.0} steps/s", 1e3 * drift);
+    println!(
+        "C7 (defaults): largest drift {:.3} mm (box {index}), asleep {asleep}, {rate:.0} steps/s",
+        1e3 * drift
+    );
     assert!(asleep, "the stack falls asleep");
     assert!(drift < 1e-3, "drift {drift} m");
 }
@@ -83,7 +92,10 @@ fn c8_pyramid_holds() {
 #[test]
 fn c8_pyramid_with_stiff_settings() {
     let (drift, count, rate) = pyramid(stiff_settings(), 20);
-    println!("C8 (16 substeps, 240 Hz, 2+2 it): {count} boxes, largest drift {:.3} mm, {rate:.1} steps/s", 1e3 * drift);
+    println!(
+        "C8 (16 substeps, 240 Hz, 2+2 it): {count} boxes, largest drift {:.3} mm, {rate:.1} steps/s",
+        1e3 * drift
+    );
     assert_eq!(count, 210);
     assert!(drift < 1e-2, "drift {drift} m");
 }
@@ -135,7 +147,8 @@ fn step_and_compare_with_lcp(world: &mut World, bodies: &[BodyId]) -> LayerCompa
             None => Anchor::WORLD,
         };
         let com_b = com(c.body_b).unwrap_or_else(|| world.body(c.body_b).unwrap().com_world());
-        let friction = world.body(c.body_a).unwrap().material().friction * world.body(c.body_b).unwrap().material().friction;
+        let friction = world.body(c.body_a).unwrap().material().friction
+            * world.body(c.body_b).unwrap().material().friction;
         let mut first_row = Vec::new();
         let (mut total, mut moment) = (0.0, DVec3::ZERO);
         for p in &c.points {
@@ -239,7 +252,10 @@ fn candidate_settings() -> Vec<(&'static str, SolverSettings)> {
 fn measure_stacking_across_settings() {
     for (name, settings) in candidate_settings() {
         let (drift, index, asleep, rate) = stack(settings.clone(), 10);
-        println!("C7 [{name}]: largest drift {:.3} mm (box {index}), asleep {asleep}, {rate:.0} steps/s", 1e3 * drift);
+        println!(
+            "C7 [{name}]: largest drift {:.3} mm (box {index}), asleep {asleep}, {rate:.0} steps/s",
+            1e3 * drift
+        );
         let (drift, _, rate) = pyramid(settings.clone(), 20);
         println!("C8 [{name}]: largest drift {:.3} mm, {rate:.1} steps/s", 1e3 * drift);
     }

@@ -12,8 +12,12 @@
 //!   no preferred directions).
 //! - **Rolling and torsional friction**: angular rows on the relative angular velocity, clamped by
 //!   `μ_roll·Σλ_n` and `μ_torsion·Σλ_n` (coefficients in metres: lever arms of the resistance).
-//! - **Restitution**: after the substeps, points whose approach speed at the start of the step
-//!   exceeded the threshold get the normal impulse that makes `v_n = −e·v_n⁰`.
+//! - **Restitution**: after the substeps, points whose approach speed when their row engaged
+//!   exceeded the threshold get the normal impulse that makes `v_n = −e·v_n⁰` (the speed at
+//!   engagement, not at the start of the step: gravity speeds a falling body up in between).
+//! - **Anchors**: on corners, edges and faces the contact point is a material point that turns
+//!   with the body; on round surfaces (spheres, capsules) it keeps its step-start offset, so a
+//!   rolling ball's contact stays under it.
 //!
 //! Accumulated impulses are kept per point (matched by feature id across steps) and applied again
 //! at every substep's warm start.
@@ -57,11 +61,15 @@ pub(crate) struct ContactPointInput {
 #[derive(Clone, Copy, Debug)]
 struct PointConstraint {
     softness: Softness,
+    /// The contact's surface point on each body relative to its centre of mass at the start of
+    /// the step, world frame (the two lie on one normal line, `separation` apart).
+    r_a0: DVec3,
+    r_b0: DVec3,
+    /// The same surface points in the body frames (material points), for the separation.
     r_a_local: DVec3,
     r_b_local: DVec3,
-    /// Separation at the step start minus `n·(r_b − r_a)` then: adding `n·(current r_b − r_a +
-    /// Δp_b − Δp_a)` gives the separation now.
-    adjusted_separation: f64,
+    /// Separation measured by the narrow phase at the start of the step.
+    base_separation: f64,
     normal_mass: f64,
     /// Inverse of the 2×2 tangent effective mass, embedded in 3×3 over the tangent plane.
     tangent_mass: DMat3,
@@ -75,11 +83,37 @@ struct PointConstraint {
 }
 
 impl PointConstraint {
+    /// The contact's surface points relative to each body's centre of mass now, world frame.
+    ///
+    /// On a corner, edge or face the contact point is a material point: it turns with the body
+    /// (that is what makes a tumbling box's corner stop dead on impact). On a round surface
+    /// (sphere, capsule) it is not: as a ball rolls, its contact stays at the bottom, and a
+    /// material point would roll away from the ground and let the ball sink; so there the
+    /// step-start offset is kept, which also keeps the contact on the line through the ball's
+    /// centre (no spurious torque, even from the large impulse that stops a fast ball).
+    #[inline]
+    fn anchors(&self, round: (bool, bool), a: &SolverBody, b: &SolverBody) -> (DVec3, DVec3) {
+        let r_a = if round.0 { self.r_a0 } else { a.q * self.r_a_local };
+        let r_b = if round.1 { self.r_b0 } else { b.q * self.r_b_local };
+        (r_a, r_b)
+    }
+
+    /// The separation now: the measured separation advanced by how far each body's contact point
+    /// moved since the step began.
+    #[inline]
+    fn separation(&self, (r_a, r_b): (DVec3, DVec3), a: &SolverBody, b: &SolverBody, n: DVec3) -> f64 {
+        let moved_b = b.dp + (r_b - self.r_b0);
+        let moved_a = a.dp + (r_a - self.r_a0);
+        self.base_separation + n.dot(moved_b - moved_a)
+    }
+
     const EMPTY: PointConstraint = PointConstraint {
         softness: Softness::RIGID_VELOCITY,
+        r_a0: DVec3::ZERO,
+        r_b0: DVec3::ZERO,
         r_a_local: DVec3::ZERO,
         r_b_local: DVec3::ZERO,
-        adjusted_separation: 0.0,
+        base_separation: 0.0,
         normal_mass: 0.0,
         tangent_mass: DMat3::ZERO,
         sliding_mass: 0.0,
@@ -95,6 +129,9 @@ impl PointConstraint {
 pub(crate) struct ContactConstraint {
     /// The contact this came from (its proxy pair).
     pub key: (ProxyKey, ProxyKey),
+    /// Whether each side is a round surface (sphere, capsule) whose contact point stays put as the
+    /// body turns, rather than a corner or face that carries it along (see `anchors`).
+    round: (bool, bool),
     pub body_a: usize,
     pub body_b: usize,
     normal: DVec3,
@@ -116,6 +153,7 @@ impl ContactConstraint {
         (body_a, body_b): (usize, usize),
         (a, b): (&SolverBody, &SolverBody),
         (com_a, com_b): (DVec3, DVec3),
+        round: (bool, bool),
         normal: DVec3,
         points: &[ContactPointInput],
         material: ContactMaterial,
@@ -123,9 +161,9 @@ impl ContactConstraint {
     ) -> ContactConstraint {
         let hertz =
             if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
-        let (qa_inv, qb_inv) = (a.q.inverse(), b.q.inverse());
         let mut constraint = ContactConstraint {
             key,
+            round,
             body_a,
             body_b,
             normal,
@@ -138,8 +176,14 @@ impl ContactConstraint {
         };
         let tangent_projector = DMat3::IDENTITY - outer(normal, normal);
         for (pc, input) in constraint.points.iter_mut().zip(points) {
-            let r_a = input.point_world - com_a;
-            let r_b = input.point_world - com_b;
+            // The narrow phase's point is midway between the surfaces. A round body is pushed at
+            // its own surface point, on the line through its centre (a speculative point can lie
+            // far outside it, and pushing there would spin it); others at the midpoint.
+            let r_a = input.point_world
+                - if round.0 { 0.5 * input.separation * normal } else { DVec3::ZERO }
+                - com_a;
+            let r_b = input.point_world + if round.1 { 0.5 * input.separation * normal } else { DVec3::ZERO }
+                - com_b;
             let k = crate::dynamics::joint::parts::point_mass_matrix(a, r_a)
                 + crate::dynamics::joint::parts::point_mass_matrix(b, r_b);
             let kn = normal.dot(k * normal);
@@ -151,14 +195,20 @@ impl ContactConstraint {
             let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
             *pc = PointConstraint {
                 softness,
-                r_a_local: qa_inv * r_a,
-                r_b_local: qb_inv * r_b,
-                adjusted_separation: input.separation - normal.dot(r_b - r_a),
+                r_a0: r_a,
+                r_b0: r_b,
+                r_a_local: a.q.inverse() * r_a,
+                r_b_local: b.q.inverse() * r_b,
+                base_separation: input.separation,
                 normal_mass,
                 tangent_mass: tangent_projector * invert_or_zero(kt) * tangent_projector,
                 sliding_mass: {
                     let trace_t = k.x_axis.x + k.y_axis.y + k.z_axis.z - kn;
-                    if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 }
+                    if trace_t > 0.0 {
+                        2.0 / trace_t
+                    } else {
+                        0.0
+                    }
                 },
                 normal_impulse: if ctx.warm_starting { input.impulse.normal } else { 0.0 },
                 tangent_impulse: if ctx.warm_starting {
@@ -179,8 +229,9 @@ impl ContactConstraint {
 
     /// Stage "warm start": apply the accumulated impulses again.
     pub fn warm_start(&self, a: &mut SolverBody, b: &mut SolverBody) {
+        let round = self.round;
         for pc in &self.points[..self.point_count] {
-            let (r_a, r_b) = (a.q * pc.r_a_local, b.q * pc.r_b_local);
+            let (r_a, r_b) = pc.anchors(round, a, b);
             Self::apply(a, b, r_a, r_b, pc.normal_impulse * self.normal + pc.tangent_impulse);
         }
         let angular = self.rolling_impulse + self.torsional_impulse * self.normal;
@@ -190,13 +241,12 @@ impl ContactConstraint {
 
     /// Stage "solve" (`use_bias`) or "relax" (`!use_bias`).
     pub fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext, use_bias: bool) {
+        let round = self.round;
         let n = self.normal;
         let mut total_normal = 0.0;
         for pc in &mut self.points[..self.point_count] {
-            let (r_a, r_b) = (a.q * pc.r_a_local, b.q * pc.r_b_local);
-            // Separation now, from the motion since the step began.
-            let d = (b.dp - a.dp) + (r_b - r_a);
-            let s = n.dot(d) + pc.adjusted_separation;
+            let (r_a, r_b) = pc.anchors(round, a, b);
+            let s = pc.separation((r_a, r_b), a, b, n);
             let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                 // Speculative: allow closing the gap, no more.
                 (s * ctx.inv_h, 1.0, 0.0)
@@ -211,6 +261,12 @@ impl ContactConstraint {
                 (0.0, 1.0, 0.0)
             };
             let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
+            if vn + bias < 0.0 {
+                // The approach speed at impact (for restitution) is the fastest seen when the row
+                // engages, before its impulse acts: gravity keeps speeding a falling body up after
+                // the step began, and a speculative row engages before the surfaces touch.
+                pc.relative_velocity = pc.relative_velocity.min(vn);
+            }
             let impulse = -pc.normal_mass * mass_scale * (vn + bias) - impulse_scale * pc.normal_impulse;
             let new_impulse = (pc.normal_impulse + impulse).max(0.0);
             let applied = new_impulse - pc.normal_impulse;
@@ -227,7 +283,7 @@ impl ContactConstraint {
         // mass, whose fixed point on the rim is anti-parallel to the slip velocity.
         let mu = self.material.friction;
         for pc in &mut self.points[..self.point_count] {
-            let (r_a, r_b) = (a.q * pc.r_a_local, b.q * pc.r_b_local);
+            let (r_a, r_b) = pc.anchors(round, a, b);
             let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
             let vt = dv - n.dot(dv) * n;
             let old = pc.tangent_impulse;
@@ -275,6 +331,7 @@ impl ContactConstraint {
     /// Stage "restitution": after the substeps, make points that approached faster than the
     /// threshold separate at `e` times their approach speed.
     pub fn apply_restitution(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext) {
+        let round = self.round;
         let e = self.material.restitution;
         if e == 0.0 {
             return;
@@ -284,7 +341,7 @@ impl ContactConstraint {
             if pc.relative_velocity > -ctx.restitution_threshold || pc.max_normal_impulse == 0.0 {
                 continue;
             }
-            let (r_a, r_b) = (a.q * pc.r_a_local, b.q * pc.r_b_local);
+            let (r_a, r_b) = pc.anchors(round, a, b);
             let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
             let impulse = -pc.normal_mass * (vn + e * pc.relative_velocity);
             let new_impulse = (pc.normal_impulse + impulse).max(0.0);

@@ -21,6 +21,7 @@ use crate::dynamics::contact_solver::{ContactConstraint, ContactPointInput};
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
+use crate::shape::Shape;
 use crate::world::World;
 
 /// Solver settings. The defaults suit 60 Hz steps of everyday objects.
@@ -184,6 +185,15 @@ impl World {
                 continue;
             }
             let (Some(a), Some(b)) = (self.bodies.iter_slot(ia), self.bodies.iter_slot(ib)) else { continue };
+            let round = |body: &Body, child: u32| {
+                body.shape().is_some_and(|shape| {
+                    matches!(
+                        crate::collision::contact_manager::leaf(shape, child).0,
+                        Shape::Sphere(_) | Shape::Capsule(_)
+                    )
+                })
+            };
+            let round = (round(a, contact.child_a), round(b, contact.child_b));
             let mut points = [ContactPointInput::default(); 4];
             for ((input, point), impulse) in points.iter_mut().zip(manifold.points()).zip(&contact.impulses) {
                 *input = ContactPointInput {
@@ -197,6 +207,7 @@ impl World {
                 (ia, ib),
                 (&bodies[ia], &bodies[ib]),
                 (a.com_world(), b.com_world()),
+                round,
                 manifold.normal_world,
                 &points[..manifold.len()],
                 contact.material,

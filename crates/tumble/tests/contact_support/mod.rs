@@ -3,7 +3,9 @@
 #![allow(dead_code)]
 
 use std::time::Instant;
-use tumble::{BodyDef, BodyId, BodyKind, Cuboid, DQuat, DVec3, Material, Shape, SolverSettings, Sphere, World, WorldDef};
+use tumble::{
+    BodyDef, BodyId, BodyKind, Cuboid, DQuat, DVec3, Material, Shape, SolverSettings, Sphere, World, WorldDef,
+};
 
 pub const G: f64 = 9.81;
 pub const DT: f64 = 1.0 / 60.0;
