@@ -27,6 +27,13 @@ pub struct RunOptions {
 /// What a run did and how well it conserved what it should.
 pub struct Summary {
     pub bodies: usize,
+    /// Joints in the scene.
+    pub joints: usize,
+    /// Touching contact manifolds at the end of the run.
+    pub contacts: usize,
+    /// Dynamic bodies awake / asleep at the end of the run.
+    pub awake: usize,
+    pub sleeping: usize,
     pub steps: u64,
     pub dt: f64,
     pub simulated_time: f64,
@@ -51,7 +58,8 @@ impl Summary {
         let rel = |relative: bool| if relative { "" } else { " (absolute: initial value is 0)" };
         format!(
             "scene:                  {scene_label}\n\
-             bodies:                 {}\n\
+             bodies:                 {} ({} awake, {} sleeping at the end), {} joint{}\n\
+             contacts:               {}  touching manifolds at the end\n\
              steps:                  {} (dt {} s)\n\
              simulated time:         {} s\n\
              wall time:              {:.3} s\n\
@@ -61,6 +69,11 @@ impl Summary {
              linear momentum drift:  {:.3e}  max |p - p0 - M g t|, kg m/s\n\
              output:                 {} ({} frames, every {} step{})\n",
             self.bodies,
+            self.awake,
+            self.sleeping,
+            self.joints,
+            if self.joints == 1 { "" } else { "s" },
+            self.contacts,
             self.steps,
             self.dt,
             short(self.simulated_time),
@@ -197,8 +210,14 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<Summary, IoError
     let relative = |drift: f64, scale: f64| if scale > 0.0 { (drift / scale, true) } else { (drift, false) };
     let (energy_drift, energy_relative) = relative(max_de, e0.abs());
     let (angular_momentum_drift, angular_momentum_relative) = relative(max_dl, l0.length());
+    let dynamic = world.bodies().filter(|(_, b)| b.kind() == BodyKind::Dynamic).count();
+    let awake = world.awake_body_count();
     Ok(Summary {
         bodies: built.bodies.len(),
+        joints: world.joint_count(),
+        contacts: world.contact_count(),
+        awake,
+        sleeping: dynamic - awake,
         steps,
         dt: options.dt,
         simulated_time: world.time(),

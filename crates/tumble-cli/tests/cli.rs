@@ -179,3 +179,23 @@ fn demo_command_takes_an_output_path() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(dir.path().join("elsewhere/d.csv").exists());
 }
+
+#[test]
+fn run_reports_contacts_and_sleeping_bodies() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scenes().join("playground.toml");
+    let out = tumble(&["run", scene.to_str().unwrap(), "--out", "play.csv"], dir.path());
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    // Ground–lower box, lower–upper box, ground–pebble at least.
+    assert!(summary_value(&stdout, "contacts:") >= 3.0, "{stdout}");
+    let bodies = stdout.lines().find(|l| l.starts_with("bodies:")).unwrap();
+    assert!(
+        bodies.contains("7 (") && bodies.contains("sleeping at the end") && bodies.contains("1 joint"),
+        "{bodies}"
+    );
+    // The stack and the pebble come to rest and sleep; the pendulum keeps swinging.
+    let sleeping: usize =
+        bodies.split(", ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+    assert!(sleeping >= 3, "{bodies}");
+}

@@ -24,4 +24,4 @@ pub mod scene;
 pub use error::IoError;
 pub use mesh::{load_mesh, load_obj, load_stl, obj_from_str, stl_from_bytes};
 pub use recording::{BodySample, Frame, Recording, RecordingWriter, RECORDING_HEADER};
-pub use scene::{Scene, SceneBody, SceneWorld};
+pub use scene::{Scene, SceneBody, SceneJoint, SceneWorld};

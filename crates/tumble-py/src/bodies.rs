@@ -42,6 +42,11 @@ pub struct BodyArgs<'a, 'py> {
     pub angular_damping: f64,
     pub gravity_scale: f64,
     pub allow_sleep: bool,
+    /// Surface material (friction, restitution, rolling and torsional friction).
+    pub material: tumble::Material,
+    /// Collision group and mask bits.
+    pub filter: tumble::CollisionFilter,
+    pub sensor: bool,
 }
 
 impl BodyArgs<'_, '_> {
@@ -64,8 +69,9 @@ impl BodyArgs<'_, '_> {
             angular_damping: self.angular_damping,
             gravity_scale: self.gravity_scale,
             allow_sleep: self.allow_sleep,
-            // Settings the Python API does not take yet keep the core's defaults.
-            ..BodyDef::default()
+            material: self.material,
+            filter: self.filter,
+            is_sensor: self.sensor,
         })
     }
 }
@@ -227,6 +233,21 @@ impl Body {
     #[getter]
     fn gravity_scale(&self, py: Python<'_>) -> PyResult<f64> {
         self.read(py, |b| b.gravity_scale())
+    }
+    /// Coulomb friction coefficient of the body's surface.
+    #[getter]
+    fn friction(&self, py: Python<'_>) -> PyResult<f64> {
+        self.read(py, |b| b.material().friction)
+    }
+    /// Coefficient of restitution of the body's surface.
+    #[getter]
+    fn restitution(&self, py: Python<'_>) -> PyResult<f64> {
+        self.read(py, |b| b.material().restitution)
+    }
+    /// True for a sensor (reports overlaps, makes no contact force).
+    #[getter]
+    fn is_sensor(&self, py: Python<'_>) -> PyResult<bool> {
+        self.read(py, |b| b.is_sensor())
     }
     /// False while the body sleeps.
     #[getter]

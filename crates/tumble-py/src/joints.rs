@@ -1,14 +1,17 @@
 //! Joints: `JointId` handles, the `Joint` view (`world.joint(id)`), and joint definitions.
 //!
-//! The core has the ball-and-socket joint today; hinge, slider, fixed and distance joints slot in
-//! as one more `JointKind` each, built here by one more `*_def` function and exposed by one more
-//! `World.add_*_joint` method.
+//! One `*_def` function per core `JointKind`, each exposed by one `World.add_*_joint` method.
+//! Settings are plain tuples on the Python side: `limits = (lower, upper)`,
+//! `motor = (target_speed, max_force)`, `spring = (hertz, damping_ratio)`; the core checks them.
 
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use tumble::{BallJoint, DVec3, JointDef, JointKind};
+use tumble::{
+    BallJoint, DVec3, DistanceJoint, FixedJoint, HingeJoint, JointDef, JointKind, Limits, Motor, SliderJoint,
+    SpringSettings,
+};
 
-use crate::arrays::vec3_out;
+use crate::arrays::{floats, vec3_out};
 use crate::bodies::BodyId;
 use crate::errors::IntoPyResult;
 use crate::world::World;
@@ -23,15 +26,109 @@ crate::handle_class!(
 pub struct CommonArgs {
     pub name: String,
     pub break_force: Option<f64>,
+    pub break_torque: Option<f64>,
+    pub collide_connected: bool,
+}
+
+/// Limits, motor and spring of a hinge or slider, as given in Python.
+pub struct DriveArgs<'a, 'py> {
+    pub limits: Option<&'a Bound<'py, PyAny>>,
+    pub motor: Option<&'a Bound<'py, PyAny>>,
+    pub spring: Option<&'a Bound<'py, PyAny>>,
+    pub spring_target: f64,
+}
+
+/// Two numbers (a tuple, list or array).
+pub fn pair(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(f64, f64)> {
+    let (_, v) = floats(obj, what, &[Some(2)])?;
+    Ok((v[0], v[1]))
+}
+
+fn opt_pair(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<(f64, f64)>> {
+    obj.filter(|o| !o.is_none()).map(|o| pair(o, what)).transpose()
+}
+
+/// `(lower, upper)`.
+pub fn limits(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Limits>> {
+    Ok(opt_pair(obj, what)?.map(|(lo, hi)| Limits::new(lo, hi)))
+}
+
+/// `(hertz, damping_ratio)`.
+pub fn spring(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<SpringSettings>> {
+    Ok(opt_pair(obj, "spring")?.map(|(hz, zeta)| SpringSettings::new(hz, zeta)))
+}
+
+impl DriveArgs<'_, '_> {
+    fn parts(&self) -> PyResult<(Option<Limits>, Option<Motor>, Option<SpringSettings>)> {
+        let motor = opt_pair(self.motor, "motor")?.map(|(speed, force)| Motor::new(speed, force));
+        Ok((limits(self.limits, "limits")?, motor, spring(self.spring)?))
+    }
 }
 
 fn def(a: BodyId, b: BodyId, anchor: DVec3, kind: JointKind, common: CommonArgs) -> JointDef {
-    JointDef { name: common.name, break_force: common.break_force, ..JointDef::new(a.0, b.0, anchor, kind) }
+    JointDef {
+        name: common.name,
+        break_force: common.break_force,
+        break_torque: common.break_torque,
+        collide_connected: common.collide_connected,
+        ..JointDef::new(a.0, b.0, anchor, kind)
+    }
 }
 
-/// A ball-and-socket joint: the two bodies share the point `anchor` (world frame, at creation).
-pub fn ball_def(a: BodyId, b: BodyId, anchor: DVec3, common: CommonArgs) -> JointDef {
-    def(a, b, anchor, JointKind::Ball(BallJoint::new()), common)
+/// A ball-and-socket joint: the two bodies share the point `anchor` (world frame, at creation);
+/// optional swing cone (half-angle, rad) about `axis` and twist limits.
+pub fn ball_def(
+    (a, b, anchor, axis): (BodyId, BodyId, DVec3, DVec3),
+    swing_limit: Option<f64>,
+    twist_limits: Option<Limits>,
+    common: CommonArgs,
+) -> JointDef {
+    let kind = JointKind::Ball(BallJoint { swing_limit, twist_limits });
+    JointDef { axis_world: axis, ..def(a, b, anchor, kind, common) }
+}
+
+/// A hinge about `axis` through `anchor`.
+pub fn hinge_def(
+    a: BodyId,
+    b: BodyId,
+    anchor: DVec3,
+    axis: DVec3,
+    drive: DriveArgs,
+    common: CommonArgs,
+) -> PyResult<JointDef> {
+    let (limits, motor, spring) = drive.parts()?;
+    let kind =
+        JointKind::Hinge(HingeJoint { limits, motor, spring, spring_target_angle: drive.spring_target });
+    Ok(JointDef { axis_world: axis, ..def(a, b, anchor, kind, common) })
+}
+
+/// A slider along `axis`.
+pub fn slider_def(
+    a: BodyId,
+    b: BodyId,
+    anchor: DVec3,
+    axis: DVec3,
+    drive: DriveArgs,
+    common: CommonArgs,
+) -> PyResult<JointDef> {
+    let (limits, motor, spring) = drive.parts()?;
+    let kind =
+        JointKind::Slider(SliderJoint { limits, motor, spring, spring_target_position: drive.spring_target });
+    Ok(JointDef { axis_world: axis, ..def(a, b, anchor, kind, common) })
+}
+
+/// A weld at `anchor`.
+pub fn fixed_def(a: BodyId, b: BodyId, anchor: DVec3, common: CommonArgs) -> JointDef {
+    def(a, b, anchor, JointKind::Fixed(FixedJoint::new()), common)
+}
+
+/// A distance joint between `anchor_a` on a and `anchor_b` on b.
+pub fn distance_def(
+    (a, b, anchor_a, anchor_b): (BodyId, BodyId, DVec3, DVec3),
+    settings: DistanceJoint,
+    common: CommonArgs,
+) -> JointDef {
+    JointDef { anchor_b_world: Some(anchor_b), ..def(a, b, anchor_a, JointKind::Distance(settings), common) }
 }
 
 /// A view of one joint of a World: `world.joint(id)`. Reads the world on every access; raises
@@ -64,7 +161,7 @@ impl Joint {
     fn name(&self, py: Python<'_>) -> PyResult<String> {
         self.read(py, |_, j| Ok(j.name().to_string()))
     }
-    /// "ball" (more kinds as the core gains them).
+    /// "ball", "hinge", "slider", "fixed" or "distance".
     #[getter]
     fn kind(&self, py: Python<'_>) -> PyResult<&'static str> {
         self.read(py, |_, j| Ok(j.kind().name()))
@@ -81,6 +178,16 @@ impl Joint {
     #[getter]
     fn is_broken(&self, py: Python<'_>) -> PyResult<bool> {
         self.read(py, |_, j| Ok(j.is_broken()))
+    }
+    /// Magnitude of the linear constraint force over the last step, N.
+    #[getter]
+    fn constraint_force(&self, py: Python<'_>) -> PyResult<f64> {
+        self.read(py, |_, j| Ok(j.constraint_force()))
+    }
+    /// Magnitude of the angular constraint torque over the last step, N·m.
+    #[getter]
+    fn constraint_torque(&self, py: Python<'_>) -> PyResult<f64> {
+        self.read(py, |_, j| Ok(j.constraint_torque()))
     }
     /// The anchor point on body a, world frame, (3,).
     #[getter]

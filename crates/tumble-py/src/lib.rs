@@ -11,6 +11,7 @@
 //! | `bodies.rs` | `BodyId` handles, the `Body` view, body definitions from keyword arguments |
 //! | `joints.rs` | `JointId` handles, the `Joint` view, joint definitions |
 //! | `shapes.rs` | `Shape` and its subclasses |
+//! | `queries.rs` | `contacts()` as a structured array, ray casts (`RayHit`), events, `from_scene` |
 //! | `mass.rs` | `MassProperties`, `mass_properties(vertices, triangles)` |
 //! | `errors.rs` | core errors as `tumble.TumbleError` subclasses |
 
@@ -21,6 +22,7 @@ mod bodies;
 mod errors;
 mod joints;
 mod mass;
+mod queries;
 mod shapes;
 mod world;
 
@@ -62,6 +64,7 @@ fn _tumble(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<bodies::Body>()?;
     m.add_class::<joints::JointId>()?;
     m.add_class::<joints::Joint>()?;
+    m.add_class::<queries::RayHit>()?;
     m.add_class::<shapes::Shape>()?;
     m.add_class::<shapes::SphereShape>()?;
     m.add_class::<shapes::BoxShape>()?;
@@ -70,6 +73,7 @@ fn _tumble(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<shapes::ConeShape>()?;
     m.add_class::<shapes::TriMeshShape>()?;
     m.add_class::<shapes::CompoundShape>()?;
+    m.add_class::<shapes::ConvexHullShape>()?;
     m.add_class::<mass::MassProperties>()?;
     m.add_function(wrap_pyfunction!(mass::mass_properties, m)?)?;
     Ok(())

@@ -25,7 +25,8 @@ impl Shape {
         Ok(MassProperties(self.0.mass_properties(density).py()?))
     }
 
-    /// The shape kind: "sphere", "box", "capsule", "cylinder", "cone", "mesh" or "compound".
+    /// The shape kind: "sphere", "box", "capsule", "cylinder", "cone", "hull", "mesh" or
+    /// "compound".
     #[getter]
     fn kind(&self) -> &'static str {
         self.0.kind_name()
@@ -44,6 +45,9 @@ impl Shape {
             tumble::Shape::Cone(s) => format!("Cone(radius={}, half_height={})", s.radius, s.half_height),
             tumble::Shape::TriMesh(m) => {
                 format!("TriMesh({} vertices, {} triangles)", m.vertices().len(), m.triangles().len())
+            }
+            tumble::Shape::ConvexHull(h) => {
+                format!("ConvexHull({} vertices, {} faces)", h.vertices().len(), h.faces().len())
             }
             tumble::Shape::Compound(c) => format!("Compound({} parts)", c.children().len()),
             other => format!("{}(…)", other.kind_name()),
@@ -79,6 +83,7 @@ pub fn shape_to_py(py: Python<'_>, shape: &tumble::Shape) -> PyResult<Py<PyAny>>
         tumble::Shape::Cylinder(_) => new_shape(py, s, CylinderShape),
         tumble::Shape::Cone(_) => new_shape(py, s, ConeShape),
         tumble::Shape::TriMesh(_) => new_shape(py, s, TriMeshShape),
+        tumble::Shape::ConvexHull(_) => new_shape(py, s, ConvexHullShape),
         tumble::Shape::Compound(_) => new_shape(py, s, CompoundShape),
         // Shapes without a Python class of their own yet come back as the base class.
         _ => Ok(Py::new(py, Shape(s))?.into_any()),
@@ -236,6 +241,31 @@ impl TriMeshShape {
         let tris = Self::mesh(&slf).triangles();
         let flat: Vec<u32> = tris.iter().flatten().copied().collect();
         PyArray1::from_vec(slf.py(), flat).reshape([tris.len(), 3])
+    }
+}
+
+/// The convex hull of `points` (N, 3): a convex polyhedron whose vertices are the extreme points.
+#[pyclass(name = "ConvexHull", extends = Shape, frozen, module = "tumble")]
+pub struct ConvexHullShape;
+
+#[pymethods]
+impl ConvexHullShape {
+    #[new]
+    fn new(points: &Bound<'_, PyAny>) -> PyResult<PyClassInitializer<Self>> {
+        let (_, v) = floats(points, "points", &[None, Some(3)])?;
+        let points: Vec<tumble::DVec3> =
+            v.chunks_exact(3).map(|c| tumble::DVec3::new(c[0], c[1], c[2])).collect();
+        let hull = tumble::ConvexHull::new(&points).map_err(|e| value_error(format!("convex hull: {e}")))?;
+        Ok(init(tumble::Shape::ConvexHull(hull), ConvexHullShape))
+    }
+    /// The hull's vertices (the extreme points), (V, 3).
+    #[getter]
+    fn vertices<'py>(slf: PyRef<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let tumble::Shape::ConvexHull(h) = &slf.as_super().0 else {
+            unreachable!("a ConvexHull object holds a hull")
+        };
+        let rows: Vec<[f64; 3]> = h.vertices().iter().map(|v| v.to_array()).collect();
+        rows_out(slf.py(), &rows)
     }
 }
 

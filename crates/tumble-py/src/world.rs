@@ -13,13 +13,14 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use tumble::dynamics::SleepSettings;
-use tumble::{DVec3, SolverSettings, WorldDef};
+use tumble::{DVec3, DistanceJoint, SolverSettings, WorldDef};
 
 use crate::arrays::{self, opt_vec3, rows_out, vec3, vec3_out};
 use crate::bodies::{Body, BodyArgs, BodyId};
 use crate::errors::{value_error, IntoPyResult};
 use crate::joints::{self, CommonArgs, Joint, JointId};
 use crate::mass::MassProperties;
+use crate::queries::{self, RayHit};
 use crate::shapes::Shape;
 
 /// A rigid-body world. `World(gravity=(0, 0, -9.81), substeps=4, sleep=True)`.
@@ -107,10 +108,13 @@ impl World {
 
     /// Adds a body and returns its handle. Checked in full by the core first; on error nothing
     /// changes. Give `shape` with `density` (kg/m³) or `mass` (kg), or `mass_properties`.
+    /// `friction`, `restitution`, `rolling_friction` and `torsional_friction` make the surface
+    /// material; `group`/`mask` the collision filter bits; a `sensor` reports overlaps only.
     #[pyo3(signature = (shape = None, *, density = 1000.0, mass = None, mass_properties = None,
         position = None, orientation = None, linear_velocity = None, angular_velocity = None,
         kind = "dynamic", name = "", linear_damping = 0.0, angular_damping = 0.0,
-        gravity_scale = 1.0, allow_sleep = true))]
+        gravity_scale = 1.0, allow_sleep = true, friction = 0.6, restitution = 0.0,
+        rolling_friction = 0.0, torsional_friction = 0.0, group = 1, mask = u32::MAX, sensor = false))]
     #[allow(clippy::too_many_arguments)]
     fn add_body(
         &mut self,
@@ -128,6 +132,13 @@ impl World {
         angular_damping: f64,
         gravity_scale: f64,
         allow_sleep: bool,
+        friction: f64,
+        restitution: f64,
+        rolling_friction: f64,
+        torsional_friction: f64,
+        group: u32,
+        mask: u32,
+        sensor: bool,
     ) -> PyResult<BodyId> {
         let def = BodyArgs {
             shape,
@@ -144,6 +155,9 @@ impl World {
             angular_damping,
             gravity_scale,
             allow_sleep,
+            material: tumble::Material { friction, restitution, rolling_friction, torsional_friction },
+            filter: tumble::CollisionFilter { group, mask },
+            sensor,
         }
         .into_def()?;
         Ok(BodyId(self.inner.add_body(def).py()?))
@@ -183,22 +197,126 @@ impl World {
     // ---- joints ---------------------------------------------------------------------------------
 
     /// Ball-and-socket joint: bodies `a` and `b` share the world point `anchor` (at creation).
-    #[pyo3(signature = (a, b, anchor, *, name = "", break_force = None))]
+    /// `swing_limit` (rad) bounds the angle between the bodies' `axis`; `twist_limits` (lower,
+    /// upper) the twist about it.
+    #[pyo3(signature = (a, b, anchor, *, axis = None, swing_limit = None, twist_limits = None,
+        name = "", break_force = None, break_torque = None, collide_connected = false))]
+    #[allow(clippy::too_many_arguments)]
     fn add_ball_joint(
+        &mut self,
+        a: BodyId,
+        b: BodyId,
+        anchor: &Bound<'_, PyAny>,
+        axis: Option<&Bound<'_, PyAny>>,
+        swing_limit: Option<f64>,
+        twist_limits: Option<&Bound<'_, PyAny>>,
+        name: &str,
+        break_force: Option<f64>,
+        break_torque: Option<f64>,
+        collide_connected: bool,
+    ) -> PyResult<JointId> {
+        let common = CommonArgs { name: name.into(), break_force, break_torque, collide_connected };
+        let axis = opt_vec3(axis, "axis")?.unwrap_or(DVec3::Z);
+        let twist = joints::limits(twist_limits, "twist_limits")?;
+        let def = joints::ball_def((a, b, vec3(anchor, "anchor")?, axis), swing_limit, twist, common);
+        Ok(JointId(self.inner.add_joint(def).py()?))
+    }
+
+    /// Hinge joint about `axis` through `anchor` (world frame, at creation). `limits` =
+    /// (lower, upper) angle in rad, `motor` = (target_speed rad/s, max_torque N·m), `spring` =
+    /// (hertz, damping_ratio) towards `spring_target` (rad).
+    #[pyo3(signature = (a, b, anchor, axis, limits = None, motor = None, spring = None, *,
+        spring_target = 0.0, name = "", break_force = None, break_torque = None, collide_connected = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_hinge_joint(
+        &mut self,
+        a: BodyId,
+        b: BodyId,
+        anchor: &Bound<'_, PyAny>,
+        axis: &Bound<'_, PyAny>,
+        limits: Option<&Bound<'_, PyAny>>,
+        motor: Option<&Bound<'_, PyAny>>,
+        spring: Option<&Bound<'_, PyAny>>,
+        spring_target: f64,
+        name: &str,
+        break_force: Option<f64>,
+        break_torque: Option<f64>,
+        collide_connected: bool,
+    ) -> PyResult<JointId> {
+        let common = CommonArgs { name: name.into(), break_force, break_torque, collide_connected };
+        let drive = joints::DriveArgs { limits, motor, spring, spring_target };
+        let (anchor, axis) = (vec3(anchor, "anchor")?, vec3(axis, "axis")?);
+        Ok(JointId(self.inner.add_joint(joints::hinge_def(a, b, anchor, axis, drive, common)?).py()?))
+    }
+
+    /// Slider joint along `axis`: `limits` (m), `motor` = (target_speed m/s, max_force N),
+    /// `spring` = (hertz, damping_ratio) towards `spring_target` (m).
+    #[pyo3(signature = (a, b, anchor, axis, limits = None, motor = None, spring = None, *,
+        spring_target = 0.0, name = "", break_force = None, break_torque = None, collide_connected = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_slider_joint(
+        &mut self,
+        a: BodyId,
+        b: BodyId,
+        anchor: &Bound<'_, PyAny>,
+        axis: &Bound<'_, PyAny>,
+        limits: Option<&Bound<'_, PyAny>>,
+        motor: Option<&Bound<'_, PyAny>>,
+        spring: Option<&Bound<'_, PyAny>>,
+        spring_target: f64,
+        name: &str,
+        break_force: Option<f64>,
+        break_torque: Option<f64>,
+        collide_connected: bool,
+    ) -> PyResult<JointId> {
+        let common = CommonArgs { name: name.into(), break_force, break_torque, collide_connected };
+        let drive = joints::DriveArgs { limits, motor, spring, spring_target };
+        let (anchor, axis) = (vec3(anchor, "anchor")?, vec3(axis, "axis")?);
+        Ok(JointId(self.inner.add_joint(joints::slider_def(a, b, anchor, axis, drive, common)?).py()?))
+    }
+
+    /// Fixed (weld) joint at `anchor`: no relative motion.
+    #[pyo3(signature = (a, b, anchor, *, name = "", break_force = None, break_torque = None,
+        collide_connected = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_fixed_joint(
         &mut self,
         a: BodyId,
         b: BodyId,
         anchor: &Bound<'_, PyAny>,
         name: &str,
         break_force: Option<f64>,
+        break_torque: Option<f64>,
+        collide_connected: bool,
     ) -> PyResult<JointId> {
-        let def = joints::ball_def(
-            a,
-            b,
-            vec3(anchor, "anchor")?,
-            CommonArgs { name: name.to_string(), break_force },
-        );
-        Ok(JointId(self.inner.add_joint(def).py()?))
+        let common = CommonArgs { name: name.into(), break_force, break_torque, collide_connected };
+        Ok(JointId(self.inner.add_joint(joints::fixed_def(a, b, vec3(anchor, "anchor")?, common)).py()?))
+    }
+
+    /// Distance joint between `anchor_a` on a and `anchor_b` on b (world frame, at creation):
+    /// rigid at `length` (default: the distance now), or a `spring` = (hertz, damping_ratio);
+    /// always within [`min_length`, `max_length`].
+    #[pyo3(signature = (a, b, anchor_a, anchor_b, *, length = None, min_length = 0.0,
+        max_length = f64::INFINITY, spring = None, name = "", break_force = None, collide_connected = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_distance_joint(
+        &mut self,
+        a: BodyId,
+        b: BodyId,
+        anchor_a: &Bound<'_, PyAny>,
+        anchor_b: &Bound<'_, PyAny>,
+        length: Option<f64>,
+        min_length: f64,
+        max_length: f64,
+        spring: Option<&Bound<'_, PyAny>>,
+        name: &str,
+        break_force: Option<f64>,
+        collide_connected: bool,
+    ) -> PyResult<JointId> {
+        let common = CommonArgs { name: name.into(), break_force, break_torque: None, collide_connected };
+        let settings = DistanceJoint { length, min_length, max_length, spring: joints::spring(spring)? };
+        let anchors = (a, b, vec3(anchor_a, "anchor_a")?, vec3(anchor_b, "anchor_b")?);
+        Ok(JointId(self.inner.add_joint(joints::distance_def(anchors, settings, common)).py()?))
     }
 
     /// Removes a joint; its handle becomes stale.
@@ -314,6 +432,81 @@ impl World {
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let origin = opt_vec3(about, "about")?.unwrap_or(DVec3::ZERO);
         Ok(vec3_out(py, self.inner.angular_momentum(origin)))
+    }
+
+    /// Touching contacts, one row per contact point: a structured array with fields `body_a`,
+    /// `body_b` (int64 slot indices, `BodyId.index`), `point` (3,), `normal` (3,, from a to b),
+    /// `separation`, `impulse` (normal impulse of the last step, N·s) and `sensor`.
+    fn contacts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        queries::contacts_array(py, &self.inner)
+    }
+    /// Number of touching contact manifolds.
+    #[getter]
+    fn contact_count(&self) -> usize {
+        self.inner.contact_count()
+    }
+
+    /// The closest body hit by the ray from `origin` along `direction` (normalised) within
+    /// `max_distance`, as a `RayHit`, or None. Sensors are skipped unless `include_sensors`; the
+    /// ray's `group`/`mask` filter bodies like a shape's.
+    #[pyo3(signature = (origin, direction, max_distance = f64::INFINITY, *, include_sensors = false,
+        group = u32::MAX, mask = u32::MAX))]
+    fn raycast(
+        &self,
+        origin: &Bound<'_, PyAny>,
+        direction: &Bound<'_, PyAny>,
+        max_distance: f64,
+        include_sensors: bool,
+        group: u32,
+        mask: u32,
+    ) -> PyResult<Option<RayHit>> {
+        let (o, d) = queries::ray_args(origin, direction)?;
+        let filter = queries::filter(group, mask, include_sensors);
+        let hit = self.inner.ray_cast(o, d, max_distance, Some(&filter)).map_err(queries::query_error)?;
+        Ok(hit.map(RayHit::from))
+    }
+
+    /// Every body the ray hits (each once, its closest hit), sorted by distance then body.
+    #[pyo3(signature = (origin, direction, max_distance = f64::INFINITY, *, include_sensors = false,
+        group = u32::MAX, mask = u32::MAX))]
+    fn raycast_all(
+        &self,
+        origin: &Bound<'_, PyAny>,
+        direction: &Bound<'_, PyAny>,
+        max_distance: f64,
+        include_sensors: bool,
+        group: u32,
+        mask: u32,
+    ) -> PyResult<Vec<RayHit>> {
+        let (o, d) = queries::ray_args(origin, direction)?;
+        let filter = queries::filter(group, mask, include_sensors);
+        let hits =
+            self.inner.ray_cast_all(o, d, max_distance, Some(&filter)).map_err(queries::query_error)?;
+        Ok(hits.into_iter().map(RayHit::from).collect())
+    }
+
+    /// Pairs of bodies that began touching in the last step, [(a, b), ...], a < b.
+    fn contact_begin_events(&self) -> Vec<(BodyId, BodyId)> {
+        queries::pairs(self.inner.contact_begin_events())
+    }
+    /// Pairs of bodies that stopped touching in the last step.
+    fn contact_end_events(&self) -> Vec<(BodyId, BodyId)> {
+        queries::pairs(self.inner.contact_end_events())
+    }
+    /// Pairs (sensor and other body, by id) that began to overlap in the last step.
+    fn sensor_begin_events(&self) -> Vec<(BodyId, BodyId)> {
+        queries::pairs(self.inner.sensor_begin_events())
+    }
+    /// Pairs (sensor and other body, by id) that stopped overlapping in the last step.
+    fn sensor_end_events(&self) -> Vec<(BodyId, BodyId)> {
+        queries::pairs(self.inner.sensor_end_events())
+    }
+
+    /// A world built from a scene file (TOML, see the scene format); errors name the file, the
+    /// line and the key. Find bodies by name with `find_body`.
+    #[staticmethod]
+    fn from_scene(path: std::path::PathBuf) -> PyResult<World> {
+        Ok(World { inner: queries::world_from_scene(&path)? })
     }
 
     // ---- stepping -------------------------------------------------------------------------------

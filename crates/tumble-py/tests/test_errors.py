@@ -61,9 +61,9 @@ def test_other_bad_bodies(world):
         world.add_body(tumble.Sphere(1.0), position=(1, 2))
     with pytest.raises(ValueError, match="position must be an array of numbers"):
         world.add_body(tumble.Sphere(1.0), position=("a", "b", "c"))
-    # Settings the core does not have yet are not accepted (and silently ignored).
+    # Unknown settings are not accepted (and never silently ignored).
     with pytest.raises(TypeError):
-        world.add_body(tumble.Sphere(1.0), friction=0.5)
+        world.add_body(tumble.Sphere(1.0), colour=0.5)
     with pytest.raises(TypeError):
         world.add_body("not a shape")
     assert_unchanged(world, snap)

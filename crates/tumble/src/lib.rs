@@ -8,25 +8,30 @@
 pub mod body;
 pub mod collision;
 pub mod dynamics;
+pub mod events;
 pub mod id;
 pub mod integrate;
 pub mod mass;
 pub mod math;
+pub mod query;
 pub mod shape;
 mod state_hash;
 mod step;
 pub mod world;
 
 pub use body::{Body, BodyDef, BodyKind, BodyState};
+pub use collision::{Aabb, CollisionFilter};
 pub use dynamics::joint::{
     BallJoint, DistanceJoint, FixedJoint, HingeJoint, Joint, JointDef, JointKind, Limits, Motor, SliderJoint,
     SpringSettings,
 };
 pub use dynamics::solver::SolverSettings;
 pub use dynamics::{Material, SleepSettings};
+pub use events::BodyPair;
 pub use id::{BodyId, JointId};
 pub use mass::{MassError, MassProperties, PrincipalFrame};
 pub use math::{DMat3, DQuat, DVec3, Transform};
+pub use query::{QueryError, QueryFilter, RayCastHit};
 pub use shape::{
     Capsule, Compound, CompoundChild, Cone, ConvexHull, Cuboid, Cylinder, HeightField, HullError, Plane,
     Shape, ShapeError, Sphere, TriMesh,

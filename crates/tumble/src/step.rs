@@ -34,6 +34,10 @@ impl World {
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
         self.solve(dt);
 
+        // Move the proxies of the bodies that moved, so queries between steps see the current
+        // poses (query.rs); the next step's broad phase then finds them already in place.
+        self.contact_manager.update_proxies(&self.bodies, dt);
+
         // Islands and sleep (dynamics/island.rs).
         self.update_sleep(dt, &links);
 

@@ -470,6 +470,9 @@ impl World {
         let rotation = orientation.normalize();
         body.state.rotation = rotation;
         body.state.com_world = position + rotation * body.com_local;
+        // Keep the broad phase in step with the pose, so queries see the body where it now is.
+        let body = self.bodies.get(id.into()).expect("checked above");
+        self.contact_manager.move_body_proxies(body, 0.0);
         Ok(())
     }
 

@@ -10,11 +10,11 @@ use std::path::{Path, PathBuf};
 
 use toml::Spanned;
 use tumble::{
-    BodyDef, BodyKind, Capsule, Compound, CompoundChild, Cone, Cuboid, Cylinder, DQuat, DVec3, Shape, Sphere,
-    TriMesh,
+    BodyDef, BodyKind, Capsule, CollisionFilter, Compound, CompoundChild, Cone, ConvexHull, Cuboid, Cylinder,
+    DQuat, DVec3, Shape, SleepSettings, SolverSettings, Sphere, TriMesh,
 };
 
-use super::raw::{Number, Quat, RawBody, RawKind, RawScene, RawShape, ShapeType, Vec3};
+use super::raw::{Integer, Number, Quat, RawBody, RawKind, RawScene, RawShape, RawWorld, ShapeType, Vec3};
 use super::{Scene, SceneBody, DEFAULT_DT, DEFAULT_DURATION};
 use crate::error::{line_of, IoError};
 
@@ -68,7 +68,45 @@ impl Checker<'_> {
             first_line_of_name.insert(name.clone(), name_line);
             bodies.push(self.body(raw_body)?);
         }
-        Ok(Scene { path: self.path.to_owned(), gravity, dt, duration, bodies })
+        let (solver, sleep) = self.solver(raw.world.as_ref())?;
+        let joints = self.joints(&raw.joint, &first_line_of_name)?;
+        Ok(Scene { path: self.path.to_owned(), gravity, dt, duration, solver, sleep, bodies, joints })
+    }
+
+    /// The solver and sleep keys of `[world]`; unset keys keep the engine's defaults.
+    fn solver(&self, world: Option<&RawWorld>) -> Result<(SolverSettings, SleepSettings)> {
+        let (mut solver, mut sleep) = (SolverSettings::default(), SleepSettings::default());
+        let Some(w) = world else { return Ok((solver, sleep)) };
+        let at = "world: ";
+        let count = |key: &str, v: &Option<Integer>, min: i64, default: u32| match v {
+            Some(v) => self.integer(at, key, v, min, 1000).map(|n| n as u32),
+            None => Ok(default),
+        };
+        solver.substeps = count("substeps", &w.substeps, 1, solver.substeps)?;
+        solver.solve_iterations = count("solve_iterations", &w.solve_iterations, 1, solver.solve_iterations)?;
+        solver.relax_iterations = count("relax_iterations", &w.relax_iterations, 0, solver.relax_iterations)?;
+        let non_negative = |v: f64| v >= 0.0;
+        for (key, value, target) in [
+            ("contact_hertz", &w.contact_hertz, &mut solver.contact_hertz),
+            ("contact_damping_ratio", &w.contact_damping_ratio, &mut solver.contact_damping_ratio),
+            ("joint_hertz", &w.joint_hertz, &mut solver.joint_hertz),
+            ("joint_damping_ratio", &w.joint_damping_ratio, &mut solver.joint_damping_ratio),
+        ] {
+            *target = self.number_or(at, key, value, *target, non_negative, ">= 0")?;
+        }
+        sleep.enabled = w.sleep.unwrap_or(sleep.enabled);
+        Ok((solver, sleep))
+    }
+
+    /// A whole number in `[min, max]`.
+    pub fn integer(&self, at: &str, key: &str, v: &Integer, min: i64, max: i64) -> Result<i64> {
+        let value = *v.get_ref();
+        if !(min..=max).contains(&value) {
+            return Err(
+                self.error(v.span(), format!("{at}{key} must be between {min} and {max}, got {value}"))
+            );
+        }
+        Ok(value)
     }
 
     fn body(&mut self, spanned: &Spanned<RawBody>) -> Result<SceneBody> {
@@ -133,6 +171,8 @@ impl Checker<'_> {
             gravity_scale: self.number_or(at, "gravity_scale", &raw.gravity_scale, 1.0, |_| true, "")?,
             allow_sleep: raw.allow_sleep.unwrap_or(defaults.allow_sleep),
             material: self.material(at, raw)?,
+            filter: self.filter(at, raw)?,
+            is_sensor: raw.sensor.unwrap_or(defaults.is_sensor),
             ..defaults
         };
         Ok(SceneBody { def, line: line_of(self.text, raw.name.span().start) })
@@ -168,6 +208,19 @@ impl Checker<'_> {
                 non_negative,
                 ">= 0",
             )?,
+        })
+    }
+
+    /// Collision group and mask bits (u32); unset ones keep the defaults (group 1, mask all).
+    fn filter(&self, at: &str, raw: &RawBody) -> Result<CollisionFilter> {
+        let d = CollisionFilter::default();
+        let bits = |key: &str, v: &Option<Integer>, default: u32| match v {
+            Some(v) => self.integer(at, key, v, 0, i64::from(u32::MAX)).map(|n| n as u32),
+            None => Ok(default),
+        };
+        Ok(CollisionFilter {
+            group: bits("group", &raw.group, d.group)?,
+            mask: bits("mask", &raw.mask, d.mask)?,
         })
     }
 
@@ -238,6 +291,39 @@ impl Checker<'_> {
                     .map_err(|e| self.error(file.span(), format!("{at}{key}.file: {e}")))?;
                 Shape::TriMesh(mesh)
             }
+            ShapeType::Hull => {
+                let points: Vec<DVec3> = match (&raw.points, &raw.file) {
+                    (Some(_), Some(file)) => {
+                        return Err(self.error(
+                            file.span(),
+                            format!("{at}{key}: a hull takes either `points` or `file`, not both"),
+                        ))
+                    }
+                    (Some(points), None) => {
+                        let points = points.get_ref();
+                        if let Some(p) = points.iter().find(|p| p.iter().any(|x| !x.is_finite())) {
+                            return Err(self.error(
+                                spanned.span(),
+                                format!(
+                                    "{at}{key}.points must be finite, got [{}, {}, {}]",
+                                    p[0], p[1], p[2]
+                                ),
+                            ));
+                        }
+                        points.iter().map(|&p| DVec3::from_array(p)).collect()
+                    }
+                    (None, Some(file)) => {
+                        let resolved = self.resolve(file.get_ref());
+                        let mesh = (self.mesh_loader)(&resolved)
+                            .map_err(|e| self.error(file.span(), format!("{at}{key}.file: {e}")))?;
+                        mesh.vertices().to_vec()
+                    }
+                    (None, None) => return Err(missing(self, "points` or `file")),
+                };
+                let hull = ConvexHull::new(&points)
+                    .map_err(|e| self.error(spanned.span(), format!("{at}{key}: convex hull: {e}")))?;
+                Shape::ConvexHull(hull)
+            }
             ShapeType::Compound => {
                 let Some(parts) = &raw.parts else { return Err(missing(self, "parts")) };
                 if parts.get_ref().is_empty() {
@@ -274,7 +360,14 @@ impl Checker<'_> {
         }
     }
 
-    fn number(&self, at: &str, key: &str, v: &Number, ok: impl Fn(f64) -> bool, rule: &str) -> Result<f64> {
+    pub fn number(
+        &self,
+        at: &str,
+        key: &str,
+        v: &Number,
+        ok: impl Fn(f64) -> bool,
+        rule: &str,
+    ) -> Result<f64> {
         let value = *v.get_ref();
         if !value.is_finite() {
             return Err(self.error(v.span(), format!("{at}{key} must be finite, got {value}")));
@@ -285,7 +378,7 @@ impl Checker<'_> {
         Ok(value)
     }
 
-    fn number_or(
+    pub fn number_or(
         &self,
         at: &str,
         key: &str,
@@ -300,7 +393,7 @@ impl Checker<'_> {
         }
     }
 
-    fn vec3_or(&self, at: &str, key: &str, v: &Option<Vec3>, default: DVec3) -> Result<DVec3> {
+    pub fn vec3_or(&self, at: &str, key: &str, v: &Option<Vec3>, default: DVec3) -> Result<DVec3> {
         let Some(v) = v else { return Ok(default) };
         let a = *v.get_ref();
         if a.iter().any(|x| !x.is_finite()) {

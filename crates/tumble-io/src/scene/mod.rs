@@ -6,6 +6,10 @@
 //! gravity = [0.0, 0.0, -9.81]    # m/s², default (0, 0, -9.81)
 //! dt = 0.004166666666666667      # s, default 1/240
 //! duration = 20.0                # s, default 10
+//! substeps = 4                   # solver (engine defaults): substeps, solve_iterations,
+//! solve_iterations = 1           #   relax_iterations, contact_hertz, contact_damping_ratio,
+//! contact_hertz = 30.0           #   joint_hertz, joint_damping_ratio
+//! sleep = true                   # may resting islands fall asleep
 //!
 //! [[body]]
 //! name = "brick"                 # required, unique
@@ -22,24 +26,33 @@
 //! friction = 0.6                 # surface material: friction, restitution (0..1),
 //! restitution = 0.0              #   rolling_friction, torsional_friction (engine defaults)
 //! allow_sleep = true
+//! group = 1                      # collision filter bits (u32): collide when
+//! mask = 4294967295              #   a.group & b.mask != 0 and b.group & a.mask != 0
+//! sensor = false                 # a sensor reports overlaps and makes no contact force
 //! ```
 //! Shapes: `sphere {radius}`, `box {half_extents}`, `capsule|cylinder|cone {radius, half_height}`
-//! (along local Z), `mesh {file}` (OBJ or STL, relative to the scene file), and
-//! `compound {parts = [{shape, position, orientation}, ...]}`.
+//! (along local Z), `mesh {file}` (OBJ or STL, relative to the scene file), `hull {points}` or
+//! `hull {file}` (the convex hull of the points, or of a mesh file's vertices), and
+//! `compound {parts = [{shape, position, orientation}, ...]}`. (Plane and height field shapes
+//! join when the core has them.)
+//!
+//! Joints: `[[joint]]` tables naming two bodies; see `joints.rs` for the keys.
 //!
 //! Every error names the file, the line and the key; see `check.rs` for the value checks and
 //! [`serde_error`] for errors found while reading the TOML itself.
 
 mod check;
+mod joints;
 mod raw;
 
 use std::path::{Path, PathBuf};
 
 use serde_path_to_error::Segment;
-use tumble::{BodyDef, BodyId, DVec3, TriMesh, World, WorldDef};
+use tumble::{BodyDef, BodyId, DVec3, SleepSettings, SolverSettings, TriMesh, World, WorldDef};
 
 use crate::error::{line_of, IoError};
 pub use check::UNIT_QUATERNION_TOLERANCE;
+pub use joints::SceneJoint;
 
 /// Default time step, s (1/240: small enough for stiff contact later, a common engine default).
 pub const DEFAULT_DT: f64 = 1.0 / 240.0;
@@ -56,8 +69,14 @@ pub struct Scene {
     pub dt: f64,
     /// How long to simulate, s (>= 0).
     pub duration: f64,
+    /// Solver settings (`[world]` keys over the engine's defaults).
+    pub solver: SolverSettings,
+    /// Sleep settings (`[world] sleep`).
+    pub sleep: SleepSettings,
     /// The bodies in file order.
     pub bodies: Vec<SceneBody>,
+    /// The joints in file order.
+    pub joints: Vec<SceneJoint>,
 }
 
 /// One `[[body]]` of a scene.
@@ -74,6 +93,8 @@ pub struct SceneWorld {
     pub world: World,
     /// The bodies' ids, in file order.
     pub bodies: Vec<BodyId>,
+    /// The joints' ids, in file order.
+    pub joints: Vec<tumble::JointId>,
     pub dt: f64,
     pub duration: f64,
 }
@@ -110,19 +131,37 @@ impl Scene {
         check::Checker { text, path, mesh_loader }.scene(raw)
     }
 
-    /// Builds the world: gravity from `[world]`, then the bodies in file order.
+    /// Builds the world: settings from `[world]`, then the bodies and the joints in file order.
     pub fn build_world(&self) -> Result<SceneWorld, IoError> {
-        let mut world = World::new(WorldDef { gravity: self.gravity, ..WorldDef::default() })?;
+        let def = WorldDef { gravity: self.gravity, solver: self.solver.clone(), sleep: self.sleep.clone() };
+        let mut world = World::new(def).map_err(|e| IoError::AtLine {
+            path: self.path.clone(),
+            line: 1,
+            message: format!("world: {e}"),
+        })?;
+        let at_line = |line: usize, e: tumble::WorldError| IoError::AtLine {
+            path: self.path.clone(),
+            line,
+            message: e.to_string(),
+        };
         let mut bodies = Vec::with_capacity(self.bodies.len());
         for body in &self.bodies {
-            let id = world.add_body(body.def.clone()).map_err(|e| IoError::AtLine {
-                path: self.path.clone(),
-                line: body.line,
-                message: e.to_string(),
-            })?;
-            bodies.push(id);
+            bodies.push(world.add_body(body.def.clone()).map_err(|e| at_line(body.line, e))?);
         }
-        Ok(SceneWorld { world, bodies, dt: self.dt, duration: self.duration })
+        let id_of = |name: &str| {
+            let index = self.bodies.iter().position(|b| b.def.name == name);
+            bodies[index.expect("joint bodies are checked to exist")]
+        };
+        let mut joints = Vec::with_capacity(self.joints.len());
+        for joint in &self.joints {
+            let def = tumble::JointDef {
+                body_a: id_of(&joint.body_a),
+                body_b: id_of(&joint.body_b),
+                ..joint.def.clone()
+            };
+            joints.push(world.add_joint(def).map_err(|e| at_line(joint.line, e))?);
+        }
+        Ok(SceneWorld { world, bodies, joints, dt: self.dt, duration: self.duration })
     }
 
     /// The body definitions in file order.
@@ -150,10 +189,10 @@ fn serde_error(text: &str, path: &Path, error: &serde_path_to_error::Error<toml:
     let mut context = String::new();
     let mut rest = segments.as_slice();
     if let [Segment::Map { key }, Segment::Seq { index }, tail @ ..] = rest {
-        if key == "body" {
-            context = match body_name(text, *index) {
-                Some(name) => format!("body \"{name}\": "),
-                None => format!("body #{}: ", index + 1),
+        if key == "body" || key == "joint" {
+            context = match table_name(text, key, *index) {
+                Some(name) => format!("{key} \"{name}\": "),
+                None => format!("{key} #{}: ", index + 1),
             };
             rest = tail;
         }
@@ -181,10 +220,10 @@ fn serde_error(text: &str, path: &Path, error: &serde_path_to_error::Error<toml:
     }
 }
 
-/// The `name` of the `index`-th `[[body]]`, if the file says it as a string. Read untyped so it
-/// works however broken the rest of that body is.
-fn body_name(text: &str, index: usize) -> Option<String> {
+/// The `name` of the `index`-th `[[body]]` (or `[[joint]]`: `key`), if the file says it as a
+/// string. Read untyped so it works however broken the rest of that table is.
+fn table_name(text: &str, key: &str, index: usize) -> Option<String> {
     let table: toml::Table = toml::from_str(text).ok()?;
-    let body = table.get("body")?.as_array()?.get(index)?;
+    let body = table.get(key)?.as_array()?.get(index)?;
     Some(body.get("name")?.as_str()?.to_string())
 }

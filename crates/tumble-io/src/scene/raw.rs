@@ -13,6 +13,8 @@ use toml::Spanned;
 pub(super) type Vec3 = Spanned<[f64; 3]>;
 pub(super) type Quat = Spanned<[f64; 4]>;
 pub(super) type Number = Spanned<f64>;
+pub(super) type Integer = Spanned<i64>;
+pub(super) type Pair = Spanned<[f64; 2]>;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -20,6 +22,8 @@ pub(super) struct RawScene {
     pub world: Option<RawWorld>,
     #[serde(default)]
     pub body: Vec<Spanned<RawBody>>,
+    #[serde(default)]
+    pub joint: Vec<Spanned<RawJoint>>,
 }
 
 #[derive(Deserialize)]
@@ -28,6 +32,14 @@ pub(super) struct RawWorld {
     pub gravity: Option<Vec3>,
     pub dt: Option<Number>,
     pub duration: Option<Number>,
+    pub substeps: Option<Integer>,
+    pub solve_iterations: Option<Integer>,
+    pub relax_iterations: Option<Integer>,
+    pub contact_hertz: Option<Number>,
+    pub contact_damping_ratio: Option<Number>,
+    pub joint_hertz: Option<Number>,
+    pub joint_damping_ratio: Option<Number>,
+    pub sleep: Option<bool>,
 }
 
 #[derive(Deserialize)]
@@ -50,6 +62,9 @@ pub(super) struct RawBody {
     pub restitution: Option<Number>,
     pub rolling_friction: Option<Number>,
     pub torsional_friction: Option<Number>,
+    pub group: Option<Integer>,
+    pub mask: Option<Integer>,
+    pub sensor: Option<bool>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq, Debug)]
@@ -70,7 +85,10 @@ pub(super) enum ShapeType {
     Cylinder,
     Cone,
     Mesh,
+    Hull,
     Compound,
+    // Plane and height field: the core's `Shape::Plane` / `Shape::HeightField` are being added on
+    // another branch; their `type = "plane" | "heightfield"` entries go here once it lands.
 }
 
 impl ShapeType {
@@ -82,6 +100,7 @@ impl ShapeType {
             ShapeType::Cylinder => "cylinder",
             ShapeType::Cone => "cone",
             ShapeType::Mesh => "mesh",
+            ShapeType::Hull => "hull",
             ShapeType::Compound => "compound",
         }
     }
@@ -93,6 +112,8 @@ impl ShapeType {
             ShapeType::Cuboid => &["half_extents"],
             ShapeType::Capsule | ShapeType::Cylinder | ShapeType::Cone => &["radius", "half_height"],
             ShapeType::Mesh => &["file"],
+            // One of the two: the points themselves, or a mesh file whose vertices they are.
+            ShapeType::Hull => &["points", "file"],
             ShapeType::Compound => &["parts"],
         }
     }
@@ -107,6 +128,7 @@ pub(super) struct RawShape {
     pub half_height: Option<Number>,
     pub half_extents: Option<Vec3>,
     pub file: Option<Spanned<String>>,
+    pub points: Option<Spanned<Vec<[f64; 3]>>>,
     pub parts: Option<Spanned<Vec<RawPart>>>,
 }
 
@@ -126,6 +148,9 @@ impl RawShape {
         if let Some(v) = &self.file {
             keys.push(("file", v.span().start));
         }
+        if let Some(v) = &self.points {
+            keys.push(("points", v.span().start));
+        }
         if let Some(v) = &self.parts {
             keys.push(("parts", v.span().start));
         }
@@ -140,4 +165,103 @@ pub(super) struct RawPart {
     pub shape: Spanned<RawShape>,
     pub position: Option<Vec3>,
     pub orientation: Option<Quat>,
+}
+
+/// One `[[joint]]`. Which keys a joint takes depends on its type (`JointType::keys`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawJoint {
+    #[serde(rename = "type")]
+    pub kind: Spanned<JointType>,
+    pub name: Option<Spanned<String>>,
+    pub body_a: Spanned<String>,
+    pub body_b: Spanned<String>,
+    pub anchor: Option<Vec3>,
+    pub axis: Option<Vec3>,
+    pub anchor_b: Option<Vec3>,
+    pub limits: Option<Pair>,
+    pub motor: Option<Spanned<RawMotor>>,
+    pub spring: Option<Spanned<RawSpring>>,
+    pub spring_target: Option<Number>,
+    pub swing_limit: Option<Number>,
+    pub twist_limits: Option<Pair>,
+    pub length: Option<Number>,
+    pub min_length: Option<Number>,
+    pub max_length: Option<Number>,
+    pub break_force: Option<Number>,
+    pub break_torque: Option<Number>,
+    pub collide_connected: Option<bool>,
+}
+
+impl RawJoint {
+    /// The type-specific keys that are present, with the byte offset of their value.
+    pub fn present_keys(&self) -> Vec<(&'static str, usize)> {
+        let mut keys = Vec::new();
+        let mut push = |key: &'static str, span: Option<std::ops::Range<usize>>| {
+            if let Some(span) = span {
+                keys.push((key, span.start));
+            }
+        };
+        push("axis", self.axis.as_ref().map(|v| v.span()));
+        push("anchor_b", self.anchor_b.as_ref().map(|v| v.span()));
+        push("limits", self.limits.as_ref().map(|v| v.span()));
+        push("motor", self.motor.as_ref().map(|v| v.span()));
+        push("spring", self.spring.as_ref().map(|v| v.span()));
+        push("spring_target", self.spring_target.as_ref().map(|v| v.span()));
+        push("swing_limit", self.swing_limit.as_ref().map(|v| v.span()));
+        push("twist_limits", self.twist_limits.as_ref().map(|v| v.span()));
+        push("length", self.length.as_ref().map(|v| v.span()));
+        push("min_length", self.min_length.as_ref().map(|v| v.span()));
+        push("max_length", self.max_length.as_ref().map(|v| v.span()));
+        keys
+    }
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq, Eq, Debug)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum JointType {
+    Ball,
+    Hinge,
+    Slider,
+    Fixed,
+    Distance,
+}
+
+impl JointType {
+    pub fn name(self) -> &'static str {
+        match self {
+            JointType::Ball => "ball",
+            JointType::Hinge => "hinge",
+            JointType::Slider => "slider",
+            JointType::Fixed => "fixed",
+            JointType::Distance => "distance",
+        }
+    }
+
+    /// The type-specific keys this joint type takes (besides `type`, `name`, `body_a`, `body_b`,
+    /// `anchor`, `break_force`, `break_torque`, `collide_connected`, which every joint takes).
+    pub fn keys(self) -> &'static [&'static str] {
+        match self {
+            JointType::Ball => &["axis", "swing_limit", "twist_limits"],
+            JointType::Hinge | JointType::Slider => &["axis", "limits", "motor", "spring", "spring_target"],
+            JointType::Fixed => &[],
+            JointType::Distance => &["anchor_b", "length", "min_length", "max_length", "spring"],
+        }
+    }
+}
+
+/// `motor = { target_speed = 2.0, max_force = 10.0 }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMotor {
+    pub target_speed: Number,
+    pub max_force: Number,
+}
+
+/// `spring = { hertz = 2.0, damping_ratio = 0.5 }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSpring {
+    pub hertz: Number,
+    pub damping_ratio: Option<Number>,
 }

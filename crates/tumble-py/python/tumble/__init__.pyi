@@ -1,5 +1,6 @@
 """Type stubs for tumble (the Rust extension tumble._tumble plus tumble.errors)."""
 
+import os
 from typing import Iterable, Literal, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
@@ -81,7 +82,7 @@ class Shape:
     """A shape in its own frame. Capsule, cylinder and cone lie along local Z."""
 
     @property
-    def kind(self) -> Literal["sphere", "box", "capsule", "cylinder", "cone", "mesh", "compound"]: ...
+    def kind(self) -> Literal["sphere", "box", "capsule", "cylinder", "cone", "hull", "mesh", "compound"]: ...
     def mass_properties(self, density: float = 1000.0) -> MassProperties: ...
 
 @final
@@ -141,6 +142,31 @@ class Compound(Shape):
     def __init__(self, parts: Iterable[Union[Tuple[Shape, _Vec3], Tuple[Shape, _Vec3, _Quat]]]) -> None: ...
     @property
     def parts(self) -> list[Tuple[Shape, _F64, _F64]]: ...
+
+@final
+class ConvexHull(Shape):
+    """The convex hull of points (N, 3)."""
+
+    def __init__(self, points: _ArrayLike) -> None: ...
+    @property
+    def vertices(self) -> _F64:
+        """The extreme points, (V, 3)."""
+
+@final
+class RayHit:
+    """Where a ray hit a body (world frame)."""
+
+    @property
+    def body(self) -> BodyId: ...
+    @property
+    def distance(self) -> float: ...
+    @property
+    def point(self) -> _F64: ...
+    @property
+    def normal(self) -> _F64: ...
+
+_Pair = Union[Tuple[float, float], Sequence[float], npt.NDArray[np.floating]]
+"""Two numbers: limits (lower, upper), motor (target_speed, max_force), spring (hertz, damping_ratio)."""
 
 @final
 class Body:
@@ -207,6 +233,12 @@ class Body:
     @property
     def gravity_scale(self) -> float: ...
     @property
+    def friction(self) -> float: ...
+    @property
+    def restitution(self) -> float: ...
+    @property
+    def is_sensor(self) -> bool: ...
+    @property
     def is_awake(self) -> bool: ...
     @property
     def kinetic_energy(self) -> float: ...
@@ -225,13 +257,17 @@ class Joint:
     @property
     def name(self) -> str: ...
     @property
-    def kind(self) -> Literal["ball"]: ...
+    def kind(self) -> Literal["ball", "hinge", "slider", "fixed", "distance"]: ...
     @property
     def body_a(self) -> BodyId: ...
     @property
     def body_b(self) -> BodyId: ...
     @property
     def is_broken(self) -> bool: ...
+    @property
+    def constraint_force(self) -> float: ...
+    @property
+    def constraint_torque(self) -> float: ...
     @property
     def anchor_a(self) -> _F64: ...
     @property
@@ -280,6 +316,13 @@ class World:
         angular_damping: float = 0.0,
         gravity_scale: float = 1.0,
         allow_sleep: bool = True,
+        friction: float = 0.6,
+        restitution: float = 0.0,
+        rolling_friction: float = 0.0,
+        torsional_friction: float = 0.0,
+        group: int = 1,
+        mask: int = 0xFFFFFFFF,
+        sensor: bool = False,
     ) -> BodyId: ...
     def remove_body(self, body: BodyId) -> None: ...
     def body(self, body: BodyId) -> Body: ...
@@ -287,7 +330,78 @@ class World:
     def set_pose(self, body: BodyId, position: _Vec3, orientation: _Quat) -> None: ...
     def wake_body(self, body: BodyId) -> None: ...
     def add_ball_joint(
-        self, a: BodyId, b: BodyId, anchor: _Vec3, *, name: str = "", break_force: Optional[float] = None
+        self,
+        a: BodyId,
+        b: BodyId,
+        anchor: _Vec3,
+        *,
+        axis: Optional[_Vec3] = None,
+        swing_limit: Optional[float] = None,
+        twist_limits: Optional[_Pair] = None,
+        name: str = "",
+        break_force: Optional[float] = None,
+        break_torque: Optional[float] = None,
+        collide_connected: bool = False,
+    ) -> JointId: ...
+    def add_hinge_joint(
+        self,
+        a: BodyId,
+        b: BodyId,
+        anchor: _Vec3,
+        axis: _Vec3,
+        limits: Optional[_Pair] = None,
+        motor: Optional[_Pair] = None,
+        spring: Optional[_Pair] = None,
+        *,
+        spring_target: float = 0.0,
+        name: str = "",
+        break_force: Optional[float] = None,
+        break_torque: Optional[float] = None,
+        collide_connected: bool = False,
+    ) -> JointId:
+        """limits (rad), motor (target_speed rad/s, max_torque N·m), spring (hertz, damping_ratio)."""
+    def add_slider_joint(
+        self,
+        a: BodyId,
+        b: BodyId,
+        anchor: _Vec3,
+        axis: _Vec3,
+        limits: Optional[_Pair] = None,
+        motor: Optional[_Pair] = None,
+        spring: Optional[_Pair] = None,
+        *,
+        spring_target: float = 0.0,
+        name: str = "",
+        break_force: Optional[float] = None,
+        break_torque: Optional[float] = None,
+        collide_connected: bool = False,
+    ) -> JointId:
+        """limits (m), motor (target_speed m/s, max_force N), spring (hertz, damping_ratio)."""
+    def add_fixed_joint(
+        self,
+        a: BodyId,
+        b: BodyId,
+        anchor: _Vec3,
+        *,
+        name: str = "",
+        break_force: Optional[float] = None,
+        break_torque: Optional[float] = None,
+        collide_connected: bool = False,
+    ) -> JointId: ...
+    def add_distance_joint(
+        self,
+        a: BodyId,
+        b: BodyId,
+        anchor_a: _Vec3,
+        anchor_b: _Vec3,
+        *,
+        length: Optional[float] = None,
+        min_length: float = 0.0,
+        max_length: float = float("inf"),
+        spring: Optional[_Pair] = None,
+        name: str = "",
+        break_force: Optional[float] = None,
+        collide_connected: bool = False,
     ) -> JointId: ...
     def remove_joint(self, joint: JointId) -> None: ...
     def joint(self, joint: JointId) -> Joint: ...
@@ -296,6 +410,38 @@ class World:
     def apply_impulse(self, body: BodyId, impulse: _Vec3, point: Optional[_Vec3] = None) -> None: ...
     def apply_angular_impulse(self, body: BodyId, angular_impulse: _Vec3) -> None: ...
     def point_velocity(self, body: BodyId, point: _Vec3) -> _F64: ...
+    def contacts(self) -> npt.NDArray[np.void]:
+        """One row per contact point: body_a, body_b (int64 slot indices), point (3,), normal (3,),
+        separation, impulse (normal impulse of the last step, N·s), sensor (bool)."""
+    @property
+    def contact_count(self) -> int: ...
+    def raycast(
+        self,
+        origin: _Vec3,
+        direction: _Vec3,
+        max_distance: float = float("inf"),
+        *,
+        include_sensors: bool = False,
+        group: int = 0xFFFFFFFF,
+        mask: int = 0xFFFFFFFF,
+    ) -> Optional[RayHit]: ...
+    def raycast_all(
+        self,
+        origin: _Vec3,
+        direction: _Vec3,
+        max_distance: float = float("inf"),
+        *,
+        include_sensors: bool = False,
+        group: int = 0xFFFFFFFF,
+        mask: int = 0xFFFFFFFF,
+    ) -> list[RayHit]: ...
+    def contact_begin_events(self) -> list[Tuple[BodyId, BodyId]]: ...
+    def contact_end_events(self) -> list[Tuple[BodyId, BodyId]]: ...
+    def sensor_begin_events(self) -> list[Tuple[BodyId, BodyId]]: ...
+    def sensor_end_events(self) -> list[Tuple[BodyId, BodyId]]: ...
+    @staticmethod
+    def from_scene(path: Union[str, "os.PathLike[str]"]) -> "World":
+        """A world built from a scene file (TOML)."""
     def point_acceleration(self, body: BodyId, point: _Vec3) -> _F64: ...
     def inverse_mass_matrix(self, body: BodyId, r1: _Vec3, r2: _Vec3) -> _F64: ...
     def kinetic_energy(self) -> float: ...

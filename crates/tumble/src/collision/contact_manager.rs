@@ -14,6 +14,7 @@ use crate::body::{Body, BodyKind};
 use crate::dynamics::contact::Contact;
 use crate::dynamics::contact_solver::ContactImpulse;
 use crate::dynamics::material::Material;
+use crate::events::EventRecorder;
 use crate::id::{BodyId, SlotPool};
 use crate::math::Transform;
 use crate::shape::Shape;
@@ -45,7 +46,8 @@ fn pack(body_slot: usize, child: usize) -> u64 {
     ((body_slot as u64) << 32) | child as u64
 }
 
-fn unpack(data: u64) -> (usize, u32) {
+/// A proxy's payload as (body slot, leaf index).
+pub(crate) fn unpack(data: u64) -> (usize, u32) {
     ((data >> 32) as usize, data as u32)
 }
 
@@ -53,6 +55,8 @@ fn unpack(data: u64) -> (usize, u32) {
 pub(crate) struct ContactManager {
     pub broad_phase: BroadPhase,
     pub contacts: BTreeMap<(ProxyKey, ProxyKey), Contact>,
+    /// Begin/end transitions of contacts and sensor overlaps (`events.rs`).
+    pub events: EventRecorder,
 }
 
 impl ContactManager {
@@ -79,7 +83,14 @@ impl ContactManager {
         for &key in &body.proxies {
             self.broad_phase.destroy_proxy(key);
         }
-        self.contacts.retain(|(a, b), _| !body.proxies.contains(a) && !body.proxies.contains(b));
+        let events = &mut self.events;
+        self.contacts.retain(|(a, b), contact| {
+            let keep = !body.proxies.contains(a) && !body.proxies.contains(b);
+            if !keep {
+                events.record_removed(contact);
+            }
+            keep
+        });
     }
 
     /// Moves the proxies of awake, non-static bodies to their current poses; the fat boxes are
@@ -89,13 +100,19 @@ impl ContactManager {
             if body.kind == BodyKind::Static || !body.is_awake() {
                 continue;
             }
-            let Some(shape) = &body.shape else { continue };
-            let pose = body.transform();
-            let displacement = body.state.linear_velocity * dt;
-            for (&key, (leaf, local)) in body.proxies.iter().zip(leaves(shape)) {
-                let aabb = shape_aabb(leaf, &pose.mul_transform(&local));
-                self.broad_phase.move_proxy(key, aabb, displacement);
-            }
+            self.move_body_proxies(body, dt);
+        }
+    }
+
+    /// Moves one body's proxies to its current pose (any kind: a static body moved by the user
+    /// too), fat boxes stretched by its velocity times `dt`.
+    pub fn move_body_proxies(&mut self, body: &Body, dt: f64) {
+        let Some(shape) = &body.shape else { return };
+        let pose = body.transform();
+        let displacement = body.state.linear_velocity * dt;
+        for (&key, (leaf, local)) in body.proxies.iter().zip(leaves(shape)) {
+            let aabb = shape_aabb(leaf, &pose.mul_transform(&local));
+            self.broad_phase.move_proxy(key, aabb, displacement);
         }
     }
 
@@ -143,23 +160,24 @@ impl ContactManager {
     /// Updates every contact: drops those whose fat boxes parted, recomputes the manifolds of the
     /// rest (where a body is awake). `dt` sizes the speculative margin.
     pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64) {
-        let broad_phase = &self.broad_phase;
+        let (broad_phase, events) = (&self.broad_phase, &mut self.events);
         self.contacts.retain(|_, contact| {
             let overlap: bool =
                 broad_phase.fat_aabb(contact.proxy_a).overlaps(&broad_phase.fat_aabb(contact.proxy_b));
-            if !overlap {
-                return false;
-            }
-            let (Some(a), Some(b)) = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into()))
-            else {
+            let bodies_of = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into()));
+            let (true, (Some(a), Some(b))) = (overlap, bodies_of) else {
+                events.record_removed(contact);
                 return false;
             };
             if !a.is_awake() && !b.is_awake() {
                 return true;
             }
+            let before = EventRecorder::state(contact);
             update_manifold(contact, a, b, dt);
+            events.record(contact, before);
             true
         });
+        self.events.finish(&self.contacts);
     }
 
     /// Body-slot pairs of touching, non-sensor contacts between two dynamic bodies (island links).
