@@ -284,6 +284,38 @@ impl Checker<'_> {
                     _ => Shape::Cone(Cone::new(r, h).map_err(core)?),
                 }
             }
+            ShapeType::Plane | ShapeType::HeightField => {
+                let at_line = |message: String| IoError::AtLine {
+                    path: path.to_owned(),
+                    line: line_of(text, start),
+                    message: format!("{at}{key}: {message}"),
+                };
+                let shape_error = |e: tumble::ShapeError| at_line(e.to_string());
+                if ty == ShapeType::Plane {
+                    let Some(normal) = &raw.normal else { return Err(missing(self, "normal")) };
+                    let offset = raw.offset.as_ref().map_or(0.0, |o| *o.get_ref());
+                    let normal = DVec3::from_array(*normal.get_ref());
+                    Shape::Plane(tumble::Plane::new(normal, offset).map_err(shape_error)?)
+                } else {
+                    let Some(heights) = &raw.heights else { return Err(missing(self, "heights")) };
+                    let scale = raw.scale.as_ref().map_or(DVec3::ONE, |s| DVec3::from_array(*s.get_ref()));
+                    let rows = heights.get_ref().len();
+                    let cols = heights.get_ref().first().map_or(0, Vec::len);
+                    if let Some(r) = heights.get_ref().iter().position(|row| row.len() != cols) {
+                        return Err(self.error(
+                            heights.span(),
+                            format!(
+                                "{at}{key}.heights: row {r} has {} values, row 0 has {cols}",
+                                heights.get_ref()[r].len()
+                            ),
+                        ));
+                    }
+                    let flat: Vec<f64> = heights.get_ref().iter().flatten().copied().collect();
+                    Shape::HeightField(
+                        tumble::HeightField::new(flat, rows, cols, scale).map_err(shape_error)?,
+                    )
+                }
+            }
             ShapeType::Mesh => {
                 let Some(file) = &raw.file else { return Err(missing(self, "file")) };
                 let resolved = self.resolve(file.get_ref());

@@ -87,8 +87,8 @@ pub(super) enum ShapeType {
     Mesh,
     Hull,
     Compound,
-    // Plane and height field: the core's `Shape::Plane` / `Shape::HeightField` are being added on
-    // another branch; their `type = "plane" | "heightfield"` entries go here once it lands.
+    Plane,
+    HeightField,
 }
 
 impl ShapeType {
@@ -102,6 +102,8 @@ impl ShapeType {
             ShapeType::Mesh => "mesh",
             ShapeType::Hull => "hull",
             ShapeType::Compound => "compound",
+            ShapeType::Plane => "plane",
+            ShapeType::HeightField => "heightfield",
         }
     }
 
@@ -115,6 +117,8 @@ impl ShapeType {
             // One of the two: the points themselves, or a mesh file whose vertices they are.
             ShapeType::Hull => &["points", "file"],
             ShapeType::Compound => &["parts"],
+            ShapeType::Plane => &["normal", "offset"],
+            ShapeType::HeightField => &["heights", "scale"],
         }
     }
 }
@@ -130,6 +134,10 @@ pub(super) struct RawShape {
     pub file: Option<Spanned<String>>,
     pub points: Option<Spanned<Vec<[f64; 3]>>>,
     pub parts: Option<Spanned<Vec<RawPart>>>,
+    pub normal: Option<Vec3>,
+    pub offset: Option<Number>,
+    pub heights: Option<Spanned<Vec<Vec<f64>>>>,
+    pub scale: Option<Vec3>,
 }
 
 impl RawShape {
@@ -153,6 +161,18 @@ impl RawShape {
         }
         if let Some(v) = &self.parts {
             keys.push(("parts", v.span().start));
+        }
+        if let Some(v) = &self.normal {
+            keys.push(("normal", v.span().start));
+        }
+        if let Some(v) = &self.offset {
+            keys.push(("offset", v.span().start));
+        }
+        if let Some(v) = &self.heights {
+            keys.push(("heights", v.span().start));
+        }
+        if let Some(v) = &self.scale {
+            keys.push(("scale", v.span().start));
         }
         keys
     }
