@@ -27,7 +27,9 @@ fn main() {
         None => build_bundle(&viewer, &out),
     };
     if let Err(reason) = result {
-        println!("cargo:warning=the viewer page's script was not built ({reason}); `tumble view` will explain");
+        println!(
+            "cargo:warning=the viewer page's script was not built ({reason}); `tumble view` will explain"
+        );
         let stub = format!("/* {STUB_MARKER}: {} */", reason.replace("*/", "* /"));
         std::fs::write(&out, stub).expect("write the viewer stub");
     }

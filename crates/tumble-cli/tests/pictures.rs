@@ -41,7 +41,8 @@ fn png_size(path: &Path) -> (u32, u32) {
     let mut pixels = vec![0; reader.output_buffer_size()];
     let info = reader.next_frame(&mut pixels).expect("PNG pixels decode");
     // Not blank: a plot has lines and text in more than one colour.
-    let distinct: std::collections::BTreeSet<&[u8]> = pixels.chunks(info.line_size / info.width as usize).collect();
+    let distinct: std::collections::BTreeSet<&[u8]> =
+        pixels.chunks(info.line_size / info.width as usize).collect();
     assert!(distinct.len() > 10, "the image is nearly blank");
     (info.width, info.height)
 }
@@ -61,9 +62,24 @@ fn plot_writes_a_png_of_the_expected_size() {
     assert_eq!(png_size(&dir.path().join("omega.png")), (1000, 360));
 
     // Several panels stack; --size sets the whole image.
-    ok(&["plot", &csv, "--scene", &scene("demo.toml"), "-o", "p/all.png", "--what", "energy,momentum,angular_momentum,omega_body"], dir.path());
+    ok(
+        &[
+            "plot",
+            &csv,
+            "--scene",
+            &scene("demo.toml"),
+            "-o",
+            "p/all.png",
+            "--what",
+            "energy,momentum,angular_momentum,omega_body",
+        ],
+        dir.path(),
+    );
     assert_eq!(png_size(&dir.path().join("p/all.png")), (1000, 4 * 360));
-    ok(&["plot", &scene("projectile.toml"), "-o", "e.png", "--what", "energy", "--size", "640x480"], dir.path());
+    ok(
+        &["plot", &scene("projectile.toml"), "-o", "e.png", "--what", "energy", "--size", "640x480"],
+        dir.path(),
+    );
     assert_eq!(png_size(&dir.path().join("e.png")), (640, 480));
 
     ok(&["plot", &csv, "-o", "omega.svg"], dir.path());

@@ -64,7 +64,11 @@ fn keyframes_equal_the_recording() {
                 for (v, frame) in values.zip(&recording.frames) {
                     let p = y_up_to_z_up(DVec3::from(v.map(f64::from)));
                     let want = frame.bodies[0].position;
-                    assert!((p - want).length() <= 1e-6 * want.length().max(1.0), "{p} vs {want} at {}", frame.t);
+                    assert!(
+                        (p - want).length() <= 1e-6 * want.length().max(1.0),
+                        "{p} vs {want} at {}",
+                        frame.t
+                    );
                 }
                 seen += 1;
             }

@@ -67,7 +67,10 @@ fn replay_names_a_body_the_scene_lacks() {
     let text = format!("{}\n0,ghost,0,0,0,0,0,0,1,0,0,0,0,0,0\n", tumble_io::RECORDING_HEADER);
     let recording = Recording::from_reader(text.as_bytes(), "ghost.csv").unwrap();
     let err = Timeline::replay(&scene, &recording, Path::new("ghost.csv")).unwrap_err().to_string();
-    assert!(err.contains("ghost.csv") && err.contains("body \"ghost\"") && err.contains("not in the scene"), "{err}");
+    assert!(
+        err.contains("ghost.csv") && err.contains("body \"ghost\"") && err.contains("not in the scene"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -108,7 +111,12 @@ fn a_world_with_a_joint_becomes_a_viewer_document() {
     // The swinging slab has moved by the end.
     assert_ne!(json["pose"][30][7], json["pose"][0][7]);
 
-    let page = viewer_page("<title>{{TITLE}}</title>{{DATA}}<script>{{SCRIPT}}</script>", "door", &doc.to_json(), "")
-        .unwrap();
+    let page = viewer_page(
+        "<title>{{TITLE}}</title>{{DATA}}<script>{{SCRIPT}}</script>",
+        "door",
+        &doc.to_json(),
+        "",
+    )
+    .unwrap();
     assert!(page.contains("\"tumble-viewer-1\""));
 }

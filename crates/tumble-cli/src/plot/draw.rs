@@ -9,7 +9,8 @@ use plotters::style::{register_font, FontStyle};
 
 use super::series::Panel;
 
-const COLORS: [RGBColor; 4] = [RGBColor(214, 69, 65), RGBColor(46, 139, 87), RGBColor(52, 101, 164), RGBColor(40, 40, 40)];
+const COLORS: [RGBColor; 4] =
+    [RGBColor(214, 69, 65), RGBColor(46, 139, 87), RGBColor(52, 101, 164), RGBColor(40, 40, 40)];
 
 /// Makes the font that the bitmap backend draws text with available (once).
 fn register_fonts() {
@@ -34,7 +35,11 @@ pub fn draw(path: &Path, size: (u32, u32), t: &[f64], panels: &[Panel]) -> Resul
     result.map_err(|e| format!("{}: cannot draw the plot: {e}", path.display()))
 }
 
-fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, t: &[f64], panels: &[Panel]) -> Result<(), String>
+fn draw_on<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    t: &[f64],
+    panels: &[Panel],
+) -> Result<(), String>
 where
     DB::ErrorType: 'static,
 {

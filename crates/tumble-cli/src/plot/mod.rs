@@ -60,7 +60,8 @@ pub fn plot(args: &SourceArgs, out: &Path, what: Option<&str>, size: Option<&str
 
 /// `WIDTHxHEIGHT` in pixels.
 fn parse_size(text: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("--size `{text}`: expected WIDTHxHEIGHT in pixels, each 100 to 10000 (e.g. 1200x800)");
+    let bad =
+        || format!("--size `{text}`: expected WIDTHxHEIGHT in pixels, each 100 to 10000 (e.g. 1200x800)");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
     let w: u32 = w.trim().parse().map_err(|_| bad())?;
     let h: u32 = h.trim().parse().map_err(|_| bad())?;

@@ -58,7 +58,10 @@ impl PlotData {
                     recording.frames.iter().map(|f| f.bodies.iter().find(|b| &b.name == name)).collect();
                 BodyTrack {
                     name: name.clone(),
-                    omega_world: samples.iter().map(|s| s.map_or(DVec3::NAN, |b| b.angular_velocity)).collect(),
+                    omega_world: samples
+                        .iter()
+                        .map(|s| s.map_or(DVec3::NAN, |b| b.angular_velocity))
+                        .collect(),
                     orientation: samples
                         .iter()
                         .map(|s| s.map_or(DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0), |b| b.orientation))
@@ -105,7 +108,10 @@ pub struct Panel {
 
 /// x, y, z and the magnitude of a vector series, as four lines.
 pub fn vector_lines(symbol: &str, values: &[DVec3]) -> Vec<Line> {
-    let component = |k: usize, axis: &str| Line { label: format!("{symbol}{axis}"), values: values.iter().map(|v| v[k]).collect() };
+    let component = |k: usize, axis: &str| Line {
+        label: format!("{symbol}{axis}"),
+        values: values.iter().map(|v| v[k]).collect(),
+    };
     vec![
         component(0, "x"),
         component(1, "y"),

@@ -28,14 +28,19 @@ pub fn parse_what(text: &str) -> Result<Vec<What>, String> {
             None if item == "energy" => What::Energy,
             None if item == "momentum" => What::Momentum,
             None if item == "angular_momentum" || item == "L" => What::AngularMomentum,
-            _ => return Err(format!("unknown --what `{item}`: expected a comma-separated list of {WHAT_HELP}")),
+            _ => {
+                return Err(format!(
+                    "unknown --what `{item}`: expected a comma-separated list of {WHAT_HELP}"
+                ))
+            }
         };
         list.push(what);
     }
     Ok(list)
 }
 
-const NEEDS_SCENE: &str = "needs the bodies' masses, which a recording does not hold: pass --scene SCENE.toml";
+const NEEDS_SCENE: &str =
+    "needs the bodies' masses, which a recording does not hold: pass --scene SCENE.toml";
 
 /// The panels for `what`, or why one cannot be drawn from `data`.
 pub fn panels(data: &PlotData, what: &[What]) -> Result<Vec<Panel>, String> {
@@ -80,11 +85,17 @@ pub fn panels(data: &PlotData, what: &[What]) -> Result<Vec<Panel>, String> {
                     })?,
                     None if data.omega.len() == 1 => &data.omega[0],
                     None => {
-                        return Err(format!("{key}: there are several bodies; name one, as {key}:BODY ({})", names()))
+                        return Err(format!(
+                            "{key}: there are several bodies; name one, as {key}:BODY ({})",
+                            names()
+                        ))
                     }
                 };
-                let (frame, values) =
-                    if body_frame { ("body", track.omega_body()) } else { ("world", track.omega_world.clone()) };
+                let (frame, values) = if body_frame {
+                    ("body", track.omega_body())
+                } else {
+                    ("world", track.omega_world.clone())
+                };
                 Ok(Panel {
                     title: format!("Angular velocity of {} ({frame} frame)", track.name),
                     y_label: "ω (rad/s)".into(),

@@ -122,7 +122,9 @@ pub fn glb_bytes(timeline: &Timeline) -> Vec<u8> {
             for (path, values, width) in [("translation", translations, 3), ("rotation", rotations, 4)] {
                 let output = buf.floats(&values, width, ViewTarget::Other, false);
                 samplers.push(json!({ "input": input, "output": output, "interpolation": "LINEAR" }));
-                channels.push(json!({ "sampler": samplers.len() - 1, "target": { "node": nodes.len(), "path": path } }));
+                channels.push(
+                    json!({ "sampler": samplers.len() - 1, "target": { "node": nodes.len(), "path": path } }),
+                );
             }
         }
         nodes.push(node);

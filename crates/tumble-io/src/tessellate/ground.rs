@@ -13,8 +13,12 @@ pub fn plane(normal: DVec3, offset: f64, half_size: f64) -> RenderMesh {
     let (u, v) = normal.any_orthonormal_pair();
     let centre = normal * offset;
     let mut mesh = RenderMesh::default();
-    let corners = [centre - u * half_size - v * half_size, centre + u * half_size - v * half_size,
-        centre + u * half_size + v * half_size, centre - u * half_size + v * half_size];
+    let corners = [
+        centre - u * half_size - v * half_size,
+        centre + u * half_size - v * half_size,
+        centre + u * half_size + v * half_size,
+        centre - u * half_size + v * half_size,
+    ];
     for c in corners {
         mesh.push_vertex(c, normal);
     }

@@ -38,7 +38,10 @@ pub fn lathe(profile: &[Vec<ProfilePoint>], segments: usize) -> RenderMesh {
             .map(|p| {
                 let first = mesh.positions.len() as u32;
                 for &(c, s) in &angles {
-                    mesh.push_vertex(DVec3::new(p.r * c, p.r * s, p.z), DVec3::new(p.n_r * c, p.n_r * s, p.n_z));
+                    mesh.push_vertex(
+                        DVec3::new(p.r * c, p.r * s, p.z),
+                        DVec3::new(p.n_r * c, p.n_r * s, p.n_z),
+                    );
                 }
                 first
             })
