@@ -44,7 +44,8 @@ export TUMBLE_VIEWER_PAGES="$out/demo.html,$out/shapes.html,$out/projectile.html
 export TUMBLE_GLB_FILES="$out/demo.glb,$out/shapes.glb,$out/projectile.glb"
 if [ "${1:-}" = --screenshots ]; then
     mkdir -p "$root/docs/images"
-    export TUMBLE_SCREENSHOT="$root/docs/images/viewer.png" TUMBLE_SCREENSHOT_FRAME=150
+    export TUMBLE_SCREENSHOTS="demo.html=$root/docs/images/viewer.png,shapes.html=$root/docs/images/viewer-shapes.png"
+    export TUMBLE_SCREENSHOT_TIME=2.4
     "$tumble" run "$root/scenes/demo.toml" --out "$out/demo.csv" >/dev/null
     "$tumble" plot "$out/demo.csv" -o "$root/docs/images/omega.png" --what omega_body:handle,omega:handle
 fi

@@ -104,6 +104,7 @@ function start() {
     frameCount: doc.t.length,
     bodyNames: doc.bodies.map((b) => b.name),
     setFrame: (f) => { player.pause(); player.setFrame(f); },
+    frameAtTime: (t) => frameAt(doc, t),
     pause: () => player.pause(),
     get frame() { return player.frame; },
     get playing() { return player.playing; },

@@ -122,7 +122,8 @@ export class World {
   frameCamera() {
     const centre = this.bounds.getCenter(new THREE.Vector3());
     const radius = Math.max(this.bounds.getSize(new THREE.Vector3()).length() / 2, 0.05);
-    const distance = radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2)) * 1.05;
+    // Fits the bounding sphere, less a little: the box is rarely full in every direction.
+    const distance = (radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2))) * 0.8;
     this.camera.position.copy(centre).add(new THREE.Vector3(1.0, -1.6, 0.75).normalize().multiplyScalar(distance));
     this.camera.near = distance / 500;
     this.camera.far = distance * 50;

@@ -2,7 +2,8 @@
 // Run by ../run_tests.sh, which builds the pages this opens (TUMBLE_VIEWER_PAGES, comma-separated).
 // Checks: the page loads with no console errors; the canvas shows the bodies (pixels change where
 // each body is when the bodies are hidden); scrubbing to another time changes the picture.
-// With TUMBLE_SCREENSHOT=FILE it also saves a screenshot of the first page.
+// TUMBLE_SCREENSHOTS=PAGE=FILE,... also saves screenshots (PAGE a page's file name) at the time
+// TUMBLE_SCREENSHOT_TIME (seconds, default the middle).
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -13,6 +14,7 @@ import { chromium } from 'playwright-core';
 
 const pages = (process.env.TUMBLE_VIEWER_PAGES || 'test-output/demo.html').split(',');
 const chromiumPath = process.env.CHROMIUM || '/usr/bin/chromium';
+const screenshots = new Map((process.env.TUMBLE_SCREENSHOTS || '').split(',').filter(Boolean).map((s) => s.split('=')));
 const WIDTH = 1100;
 const HEIGHT = 700;
 
@@ -84,7 +86,7 @@ function installHelpers() {
 const snap = (page, name) => page.evaluate((n) => window.__snap(n), name);
 const diff = (page, a, b, box = null) => page.evaluate(([a, b, box]) => window.__diff(a, b, 24, box), [a, b, box]);
 
-for (const [n, file] of pages.entries()) {
+for (const file of pages) {
   test(`viewer page ${path.basename(file)}: loads cleanly, shows the bodies, scrubs`, async () => {
     assert.ok(fs.existsSync(file), `${file} is missing: run viewer/run_tests.sh, which builds it`);
     const { page, problems } = await open(file);
@@ -136,11 +138,16 @@ for (const [n, file] of pages.entries()) {
     await page.waitForTimeout(400);
     assert.ok(await page.evaluate(() => window.tumbleViewer.frame !== 0));
 
-    if (n === 0 && process.env.TUMBLE_SCREENSHOT) {
-      await page.evaluate((f) => window.tumbleViewer.setFrame(f), Number(process.env.TUMBLE_SCREENSHOT_FRAME || mid));
+    const shot = screenshots.get(path.basename(file));
+    if (shot) {
+      const time = process.env.TUMBLE_SCREENSHOT_TIME;
+      await page.evaluate((t) => {
+        const v = window.tumbleViewer;
+        v.setFrame(t === null ? Math.floor(v.frameCount / 2) : v.frameAtTime(t));
+      }, time === undefined ? null : Number(time));
       await page.mouse.move(5, HEIGHT / 2);
-      fs.mkdirSync(path.dirname(process.env.TUMBLE_SCREENSHOT), { recursive: true });
-      await page.screenshot({ path: process.env.TUMBLE_SCREENSHOT });
+      fs.mkdirSync(path.dirname(shot), { recursive: true });
+      await page.screenshot({ path: shot });
     }
     assert.deepEqual(problems, [], 'no console errors and no network');
     await page.close();
