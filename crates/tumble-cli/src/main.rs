@@ -5,19 +5,27 @@
 //! tumble demo [--out FILE]    T-handle flipping in zero gravity → out/demo.csv
 //! tumble run SCENE [--out FILE.csv] [--every N] [--duration S] [--dt S]
 //! tumble mass MESH [--density D]      mass properties of an OBJ/STL as JSON
+//! tumble view SCENE.toml | REC.csv --scene SCENE.toml [-o out.html]   a page that plays it in 3D
+//! tumble export SCENE.toml | REC.csv --scene SCENE.toml [-o out.glb]  glTF 2.0 animation
+//! tumble plot SCENE.toml | REC.csv [--scene S] [-o out.png|svg] [--what energy,omega:BODY,...]
 //! ```
 //! Errors go to stderr as `error: …` with exit status 1; the program never ends in a panic
 //! message for bad input.
 
 mod demo;
+mod export;
 mod mass;
+mod plot;
 mod run;
+mod source;
+mod view;
 
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
+use source::SourceArgs;
 
 #[derive(Parser)]
 #[command(
@@ -64,6 +72,66 @@ enum Command {
         #[arg(long, value_name = "D", default_value_t = 1000.0, allow_negative_numbers = true)]
         density: f64,
     },
+    /// Write one self-contained HTML page that plays a run in 3D (works offline in any current
+    /// browser): orbit, scrub, overlays for contacts, joints, frames, ω and L.
+    View {
+        #[command(flatten)]
+        input: Input,
+        /// The page to write [default: out/<input name>.html].
+        #[arg(short, long, value_name = "FILE.html")]
+        out: Option<PathBuf>,
+        /// Frames per simulated second kept in the page.
+        #[arg(long, value_name = "N", default_value_t = 60.0)]
+        fps: f64,
+    },
+    /// Export a run as binary glTF 2.0 (.glb): a node per body with its mesh, animated (Y up).
+    Export {
+        #[command(flatten)]
+        input: Input,
+        /// The file to write [default: out/<input name>.glb].
+        #[arg(short, long, value_name = "FILE.glb")]
+        out: Option<PathBuf>,
+        /// Keyframes per simulated second.
+        #[arg(long, value_name = "N", default_value_t = 60.0)]
+        fps: f64,
+    },
+    /// Plot time series of a run (PNG or SVG): energy, momenta, a body's angular velocity.
+    Plot {
+        #[command(flatten)]
+        input: Input,
+        /// The image to write, .png or .svg [default: out/<input name>.png].
+        #[arg(short, long, value_name = "FILE.png|svg")]
+        out: Option<PathBuf>,
+        /// Comma-separated panels: energy, momentum, angular_momentum, omega[:BODY] (world frame),
+        /// omega_body[:BODY] (body frame)
+        /// [default: energy,angular_momentum with masses known, else omega].
+        #[arg(long, value_name = "LIST")]
+        what: Option<String>,
+        /// Image size in pixels, WIDTHxHEIGHT [default: 1000 wide, 360 per panel].
+        #[arg(long, value_name = "WxH")]
+        size: Option<String>,
+    },
+}
+
+/// The input of `view`, `export` and `plot`.
+#[derive(Args)]
+struct Input {
+    /// A scene (.toml) to simulate, or a recording (.csv) made from the scene given by --scene.
+    #[arg(value_name = "SCENE_OR_RECORDING")]
+    input: PathBuf,
+    /// The scene a recording was made from (it gives the shapes and masses).
+    #[arg(long, value_name = "SCENE.toml")]
+    scene: Option<PathBuf>,
+    /// Simulated (or replayed) time in seconds [default: the scene's `world.duration`, or the
+    /// whole recording].
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
+    duration: Option<f64>,
+}
+
+impl Input {
+    fn source(&self, fps: Option<f64>) -> SourceArgs<'_> {
+        SourceArgs { input: &self.input, scene: self.scene.as_deref(), duration: self.duration, fps }
+    }
 }
 
 fn main() -> ExitCode {
@@ -75,6 +143,12 @@ fn main() -> ExitCode {
             run::run_scene_file(&scene, out, every, duration, dt)
         }
         Some(Command::Mass { mesh, density }) => mass::print_mass(&mesh, density),
+        Some(Command::View { input, out, fps }) => view::view(&input.source(Some(fps)), out),
+        Some(Command::Export { input, out, fps }) => export::export(&input.source(Some(fps)), out),
+        Some(Command::Plot { input, out, what, size }) => {
+            let out = out.unwrap_or_else(|| plot::default_plot_output(&input.input));
+            plot::plot(&input.source(None), &out, what.as_deref(), size.as_deref())
+        }
     };
     match result {
         Ok(text) => {

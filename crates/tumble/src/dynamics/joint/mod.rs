@@ -267,6 +267,16 @@ impl Joint {
         self.torque
     }
 
+    /// The joint frame in body a's frame: origin at the anchor, Z along the joint axis.
+    pub fn frame_a_local(&self) -> Transform {
+        self.frame_a_local
+    }
+
+    /// The joint frame in body b's frame: origin at the anchor, Z along the joint axis.
+    pub fn frame_b_local(&self) -> Transform {
+        self.frame_b_local
+    }
+
     /// The anchor on body a, world frame.
     pub fn anchor_a_world(&self, a: &Body) -> DVec3 {
         a.transform().transform_point(self.frame_a_local.translation)
