@@ -16,7 +16,7 @@ use crate::math::{hat, DMat3, DQuat, DVec3, Transform};
 use crate::shape::Shape;
 
 /// How a body moves.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum BodyKind {
     /// Moved by forces, impulses and (later) contacts and joints.
     #[default]
@@ -38,7 +38,7 @@ impl BodyKind {
 }
 
 /// Everything needed to create a body. Start from `BodyDef::default()` and set what differs.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BodyDef {
     /// A name for messages and recordings (need not be unique, but recordings are clearer if it is).
     pub name: String,
@@ -100,7 +100,7 @@ impl Default for BodyDef {
 }
 
 /// The hot state the integrator and solver work on.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BodyState {
     /// Centre of mass, world frame.
     pub com_world: DVec3,
@@ -114,7 +114,7 @@ pub struct BodyState {
 
 /// A rigid body. Read it through `World::body`; change it through the `World` methods, which
 /// validate what they are given.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Body {
     pub(crate) name: String,
     pub(crate) kind: BodyKind,

@@ -32,7 +32,7 @@ use crate::world::World;
 pub type BodyPair = (BodyId, BodyId);
 
 /// One recorded change of one contact: +1 turned on, −1 turned off.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 struct Transition {
     pair: BodyPair,
     sensor: bool,
@@ -40,7 +40,7 @@ struct Transition {
 }
 
 /// Records contact state changes during a step and turns them into per-pair events.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct EventRecorder {
     transitions: Vec<Transition>,
     contact_begin: Vec<BodyPair>,

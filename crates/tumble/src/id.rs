@@ -9,7 +9,7 @@ use std::fmt;
 macro_rules! typed_id {
     ($(#[$doc:meta])* $name:ident) => {
         $(#[$doc])*
-        #[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        #[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
         pub struct $name {
             index: u32,
             generation: u32,
@@ -67,7 +67,7 @@ typed_id!(
 );
 
 /// An untyped id, used by the pool; the typed ids convert to and from it.
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+#[derive(Clone, Copy, PartialEq, Eq, Debug, serde::Serialize, serde::Deserialize)]
 pub struct RawId {
     index: u32,
     generation: u32,
@@ -80,6 +80,7 @@ impl RawId {
     }
 }
 
+#[derive(Clone, serde::Serialize, serde::Deserialize)]
 struct Slot<T> {
     generation: u32,
     value: Option<T>,
@@ -87,6 +88,7 @@ struct Slot<T> {
 
 /// A pool of slots: insert gives an id, remove frees the slot and bumps its generation.
 /// Iteration is in slot-index order, which keeps every loop over it deterministic.
+#[derive(Clone, serde::Serialize, serde::Deserialize)]
 pub struct SlotPool<T> {
     slots: Vec<Slot<T>>,
     free: Vec<u32>,

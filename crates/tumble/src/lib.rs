@@ -15,6 +15,7 @@ pub mod mass;
 pub mod math;
 pub mod query;
 pub mod shape;
+pub mod snapshot;
 mod state_hash;
 mod step;
 pub mod world;
@@ -36,4 +37,5 @@ pub use shape::{
     Capsule, Compound, CompoundChild, Cone, ConvexHull, Cuboid, Cylinder, HeightField, HullError, Plane,
     Shape, ShapeError, Sphere, TriMesh,
 };
+pub use snapshot::SnapshotError;
 pub use world::{World, WorldDef, WorldError};

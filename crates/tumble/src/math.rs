@@ -12,7 +12,7 @@ pub fn hat(v: DVec3) -> DMat3 {
 }
 
 /// A rigid transform: first rotate, then translate. Maps a frame's local coordinates to its parent's.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Transform {
     pub translation: DVec3,
     pub rotation: DQuat,

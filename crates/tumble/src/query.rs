@@ -27,7 +27,7 @@ use crate::shape::Shape;
 use crate::world::World;
 
 /// The closest hit of a ray on one body.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RayCastHit {
     pub body: BodyId,
     /// Distance from the ray origin along the unit direction, m (0 when the origin is inside a
@@ -40,7 +40,7 @@ pub struct RayCastHit {
 }
 
 /// Which bodies a query considers.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct QueryFilter {
     /// The query's own group and mask; a body is considered when this and the body's filter
     /// accept each other.
@@ -74,7 +74,7 @@ impl QueryFilter {
 }
 
 /// A query's arguments were not usable.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 pub enum QueryError {
     #[error("{what} must be finite, got {value}")]
     NotFinite { what: &'static str, value: String },

@@ -12,13 +12,13 @@ use crate::math::{DQuat, DVec3};
 use crate::world::World;
 
 /// FNV-1a, 64-bit.
-struct Fnv64(u64);
+pub(crate) struct Fnv64(pub(crate) u64);
 
 impl Fnv64 {
-    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+    pub(crate) const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
     const PRIME: u64 = 0x0000_0100_0000_01b3;
 
-    fn bytes(&mut self, bytes: &[u8]) {
+    pub(crate) fn bytes(&mut self, bytes: &[u8]) {
         for &b in bytes {
             self.0 ^= u64::from(b);
             self.0 = self.0.wrapping_mul(Self::PRIME);

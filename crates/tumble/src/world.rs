@@ -14,7 +14,7 @@ use crate::mass::{MassError, MassProperties};
 use crate::math::{is_finite_vec, mat3_max_abs, DMat3, DVec3};
 
 /// Settings a world starts with.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WorldDef {
     /// Gravity, m/s². Default (0, 0, −9.81): Z is up.
     pub gravity: DVec3,
@@ -35,7 +35,7 @@ impl Default for WorldDef {
 }
 
 /// Errors from the world's API. Each says what was wrong and with which body.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 pub enum WorldError {
     #[error("{0} does not name a body in this world (removed, or from another world)")]
     StaleBody(BodyId),
@@ -60,16 +60,19 @@ pub enum WorldError {
 }
 
 /// A rigid-body world.
+#[derive(Clone, serde::Serialize, serde::Deserialize)]
 pub struct World {
     pub(crate) bodies: SlotPool<Body>,
     pub(crate) joints: SlotPool<Joint>,
     pub(crate) solver_settings: SolverSettings,
     pub(crate) sleep_settings: SleepSettings,
     /// The solver's per-body working copies, kept between steps to reuse the allocation.
+    #[serde(skip)]
     pub(crate) solver_bodies: Vec<SolverBody>,
     /// Broad phase, contacts and their manifolds.
     pub(crate) contact_manager: ContactManager,
     /// The solver's contact rows, kept between steps to reuse the allocation.
+    #[serde(skip)]
     pub(crate) contact_constraints: Vec<ContactConstraint>,
     pub(crate) gravity: DVec3,
     pub(crate) time: f64,

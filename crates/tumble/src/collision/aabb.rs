@@ -8,7 +8,7 @@ use crate::math::{DMat3, DVec3, Transform};
 use crate::shape::Shape;
 
 /// An axis-aligned box `[min, max]`. Boxes are closed: touching boxes overlap.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Aabb {
     pub min: DVec3,
     pub max: DVec3,

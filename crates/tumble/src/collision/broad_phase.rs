@@ -15,7 +15,7 @@ use super::ray::Ray;
 use crate::math::DVec3;
 
 /// Which tree a proxy lives in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
 pub enum ProxyKind {
     /// Never moves on its own; never paired with another static proxy.
     Static = 0,
@@ -25,7 +25,7 @@ pub enum ProxyKind {
 
 /// A proxy handle across both trees: the tree's proxy index shifted left by one, with the kind in
 /// the low bit. Ordered by that packed value, so pair order is a pure function of the keys.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
 pub struct ProxyKey(u32);
 
 impl ProxyKey {
@@ -54,7 +54,7 @@ impl ProxyKey {
 }
 
 /// A proxy's new tight box and its predicted displacement until the next update.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ProxyUpdate {
     pub key: ProxyKey,
     pub aabb: Aabb,
@@ -65,7 +65,7 @@ pub struct ProxyUpdate {
 pub const DEFAULT_AABB_MARGIN: f64 = 0.1;
 
 /// Two trees of fat boxes plus the list of proxies re-inserted since the last pair search.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct BroadPhase {
     /// Indexed by `ProxyKind as usize`.
     trees: [DynamicTree; 2],

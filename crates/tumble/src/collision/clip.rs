@@ -16,7 +16,7 @@
 use crate::math::DVec3;
 
 /// A vertex of a polygon being clipped.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ClipVertex {
     pub point: DVec3,
     /// How the vertex was made (see the module docs).
@@ -27,7 +27,7 @@ pub struct ClipVertex {
 }
 
 /// An incident point that survived clipping, with its height above the reference plane.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ClippedPoint {
     /// The point on the incident feature.
     pub point: DVec3,

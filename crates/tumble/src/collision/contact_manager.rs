@@ -51,7 +51,7 @@ pub(crate) fn unpack(data: u64) -> (usize, u32) {
     ((data >> 32) as usize, data as u32)
 }
 
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactManager {
     pub broad_phase: BroadPhase,
     pub contacts: BTreeMap<(ProxyKey, ProxyKey), Contact>,

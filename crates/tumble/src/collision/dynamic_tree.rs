@@ -20,7 +20,7 @@ use crate::math::DVec3;
 
 /// The handle of a proxy (a leaf) in one [`DynamicTree`]. Valid until the proxy is destroyed;
 /// indices are reused afterwards.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
 pub struct ProxyId(pub u32);
 
 const NULL: u32 = u32::MAX;
@@ -28,7 +28,7 @@ const NULL: u32 = u32::MAX;
 /// Height of a node on the free list (leaves are 0, internal nodes ≥ 1).
 const FREE_HEIGHT: i32 = -1;
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 struct Node {
     /// Fat box for a leaf; union of the children for an internal node.
     aabb: Aabb,
@@ -46,7 +46,7 @@ impl Node {
 }
 
 /// A dynamic bounding volume hierarchy of fat boxes with a `u64` payload per leaf.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct DynamicTree {
     nodes: Vec<Node>,
     root: u32,

@@ -19,7 +19,7 @@ use super::gjk::{ConvexPair, Simplex, SupportPoint};
 use crate::math::DVec3;
 
 /// Penetration of two cores, in A's local frame.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub struct EpaResult {
     /// Penetration depth, ≥ 0.
     pub depth: f64,
@@ -30,7 +30,7 @@ pub struct EpaResult {
     pub point_b: DVec3,
 }
 
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
 struct Face {
     v: [usize; 3],
     normal: DVec3,
@@ -87,7 +87,7 @@ pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
 
 /// The polytope's surface: triangles (dead ones kept so indices stay valid) and a map from each
 /// directed edge to the face that owns it, for walking to neighbours.
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Polytope {
     faces: Vec<Face>,
     alive: Vec<bool>,

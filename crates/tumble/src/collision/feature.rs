@@ -22,7 +22,7 @@ const CAP_SIDES: usize = 12;
 /// A vertex (1 point), edge (2 points) or face (≥ 3 points, counter-clockwise seen from outside)
 /// of a core, in the core's local frame. `code` names it: kind in the top two bits (0 vertex,
 /// 1 edge, 2 face), index below.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Feature {
     pub points: Vec<DVec3>,
     pub code: u16,

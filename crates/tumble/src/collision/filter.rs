@@ -2,7 +2,7 @@
 
 /// Group/mask filtering: shapes `a` and `b` collide when `a.group & b.mask != 0` and
 /// `b.group & a.mask != 0`. The default (group 1, mask all) collides with everything.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct CollisionFilter {
     /// The categories this shape belongs to (bits).
     pub group: u32,

@@ -19,7 +19,7 @@ use super::support::Core;
 use crate::math::{DVec3, Transform};
 
 /// A point of `A − B` with the points of A and B it came from, all in A's local frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SupportPoint {
     pub w: DVec3,
     pub a: DVec3,
@@ -55,7 +55,7 @@ impl<'a> ConvexPair<'a> {
 }
 
 /// Up to four support points.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct Simplex {
     pub points: [SupportPoint; 4],
     pub len: usize,
@@ -74,7 +74,7 @@ impl Simplex {
 }
 
 /// What GJK found, in A's local frame.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub struct GjkResult {
     /// Distance between the cores; 0 when they overlap or touch.
     pub distance: f64,

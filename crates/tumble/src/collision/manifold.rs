@@ -10,7 +10,7 @@ use crate::math::{DVec3, Transform};
 
 /// One contact point. `separation` is measured along the manifold normal: negative means the
 /// shapes overlap by that much at this point.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactPoint {
     /// Midpoint between the two surfaces, world frame.
     pub point_world: DVec3,
@@ -48,7 +48,7 @@ impl ContactPoint {
 }
 
 /// The contact between two shapes: a unit normal from A towards B and 1–4 points.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Manifold {
     /// Unit normal, world frame, pointing from A towards B.
     pub normal_world: DVec3,

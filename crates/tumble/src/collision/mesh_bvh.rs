@@ -12,7 +12,7 @@ use crate::math::DVec3;
 /// Most primitives in a leaf.
 pub const LEAF_SIZE: usize = 4;
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 struct Node {
     aabb: Aabb,
     /// Leaf: index of the first primitive in `order`; internal: index of the first child (the
@@ -23,7 +23,7 @@ struct Node {
 }
 
 /// The tree: nodes (root first) and the primitive order its leaves index into.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MeshBvh {
     nodes: Vec<Node>,
     order: Vec<u32>,

@@ -43,7 +43,7 @@ const TIE_DISTANCE: f64 = 1e-5;
 const DISTINCT: f64 = 1e-6;
 
 /// A contact point before reduction, in the mesh's local frame.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 struct Candidate {
     normal: DVec3,
     /// The point on the convex shape's surface.

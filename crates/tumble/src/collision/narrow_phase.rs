@@ -23,7 +23,7 @@ use crate::shape::Shape;
 
 /// What a pair remembers between steps to make the next query cheaper and its answer stable.
 /// Start with `PairCache::default()` and pass the same cache for the same ordered pair each step.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PairCache {
     /// The separating-axis test's last axis (box and hull pairs).
     pub sat: SatCache,

@@ -23,7 +23,7 @@ use crate::math::{DVec3, Transform};
 use crate::shape::{Capsule, Cone, Cuboid, Cylinder, Shape};
 
 /// A half-line `origin + t·direction` for `t` in `[0, max_distance]`; `direction` is unit length.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Ray {
     pub origin: DVec3,
     pub direction: DVec3,
@@ -46,7 +46,7 @@ impl Ray {
 }
 
 /// Where a ray first meets a shape. `normal` is unit length, in world coordinates.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RayHit {
     pub distance: f64,
     pub point: DVec3,

@@ -23,7 +23,7 @@ use crate::math::{DVec3, Transform};
 use crate::shape::HullEdge;
 
 /// Which axis separated (or least penetrated) last time.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum SatFeature {
     #[default]
     None,
@@ -33,14 +33,14 @@ pub enum SatFeature {
 }
 
 /// What the test found last step for this pair; pass it back next step.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SatCache {
     pub feature: SatFeature,
     pub separation: f64,
 }
 
 /// The best axis of each kind, in A's local frame.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub struct SatQuery {
     pub face_a: (usize, f64),
     pub face_b: (usize, f64),

@@ -9,7 +9,7 @@ use crate::dynamics::contact_solver::{ContactImpulse, ContactMaterial};
 use crate::id::BodyId;
 use crate::math::DVec3;
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Contact {
     pub proxy_a: ProxyKey,
     pub proxy_b: ProxyKey,
@@ -47,7 +47,7 @@ impl Contact {
 }
 
 /// A read-only view of one contact point, for users.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactPointView {
     /// Midpoint between the surfaces, world frame.
     pub point: DVec3,
@@ -61,7 +61,7 @@ pub struct ContactPointView {
 }
 
 /// A read-only view of a touching contact, for users.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactView {
     pub body_a: BodyId,
     pub body_b: BodyId,

@@ -30,7 +30,7 @@ use crate::dynamics::solver_body::SolverBody;
 use crate::math::{DMat3, DVec3};
 
 /// Impulses remembered for one manifold point between steps (for warm starting).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactImpulse {
     /// Accumulated normal impulse per substep, N·s.
     pub normal: f64,
@@ -42,7 +42,7 @@ pub struct ContactImpulse {
 }
 
 /// The friction and restitution of a contact, after combining the two shapes' materials.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactMaterial {
     pub friction: f64,
     pub restitution: f64,
@@ -51,14 +51,14 @@ pub struct ContactMaterial {
 }
 
 /// One point of a contact, as the narrow phase measured it.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactPointInput {
     pub point_world: DVec3,
     pub separation: f64,
     pub impulse: ContactImpulse,
 }
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 struct PointConstraint {
     softness: Softness,
     /// The contact's surface point on each body relative to its centre of mass at the start of
@@ -125,7 +125,7 @@ impl PointConstraint {
 }
 
 /// A manifold prepared for the solver.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactConstraint {
     /// The contact this came from (its proxy pair).
     pub key: (ProxyKey, ProxyKey),

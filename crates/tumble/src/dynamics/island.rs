@@ -15,7 +15,7 @@ use crate::id::{BodyId, RawId};
 use crate::world::World;
 
 /// When bodies fall asleep.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SleepSettings {
     pub enabled: bool,
     /// Speed of the centre of mass below which a body counts as resting, m/s.

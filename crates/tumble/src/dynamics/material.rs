@@ -9,7 +9,7 @@
 use super::contact_solver::ContactMaterial;
 
 /// A shape's surface.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Material {
     /// Coulomb friction coefficient μ (≥ 0). Default 0.6.
     pub friction: f64,

@@ -11,7 +11,7 @@
 
 use std::f64::consts::TAU;
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Softness {
     pub bias_rate: f64,
     pub mass_scale: f64,

@@ -25,7 +25,7 @@ use crate::shape::Shape;
 use crate::world::World;
 
 /// Solver settings. The defaults suit 60 Hz steps of everyday objects.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SolverSettings {
     /// Substeps per step. Default 4. More substeps allow stiffer joints (`joint_hertz` is capped
     /// at a quarter of the substep rate).
@@ -70,7 +70,7 @@ impl Default for SolverSettings {
 }
 
 /// Per-step constants every stage reads.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct StepContext {
     /// Substep length.
     pub h: f64,

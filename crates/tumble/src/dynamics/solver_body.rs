@@ -8,7 +8,7 @@ use crate::body::{Body, BodyKind};
 use crate::integrate::{free_rotation_flow, rotate_by_angular_velocity};
 use crate::math::{DMat3, DQuat, DVec3};
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct SolverBody {
     pub v: DVec3,
     pub w: DVec3,

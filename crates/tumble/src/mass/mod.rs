@@ -15,7 +15,7 @@ pub use eigen::symmetric_eigen;
 pub use mesh::{validate_closed_mesh, validate_mesh_surface};
 
 /// What went wrong computing mass properties. Every variant says what and where.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 pub enum MassError {
     #[error("{what} must be finite and > 0, got {value}")]
     NotPositive { what: &'static str, value: f64 },
@@ -42,7 +42,7 @@ pub enum MassError {
 }
 
 /// Mass properties of a solid in its own frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MassProperties {
     /// Geometric volume, m³.
     pub volume: f64,
@@ -56,7 +56,7 @@ pub struct MassProperties {
 
 /// Principal moments (ascending) and principal axes: `inertia = axes · diag(moments) · axesᵀ`,
 /// with `axes` a rotation (orthonormal columns, det +1).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PrincipalFrame {
     pub moments: DVec3,
     pub axes: DMat3,

@@ -11,7 +11,7 @@
 use crate::math::{DMat3, DVec3};
 
 /// The ten integrals over the solid, for coordinates relative to `origin`.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub(super) struct VolumeIntegrals {
     /// The point all coordinates were taken relative to.
     pub origin: DVec3,
@@ -56,7 +56,7 @@ impl Sub {
 const SUM_BLOCK: usize = 256;
 
 /// Running sums over triangles, before the constant factors 1/6, 1/24, 1/60, 1/120.
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Sums {
     volume: f64,
     abs_volume: f64,

@@ -5,13 +5,13 @@ use crate::mass::MassError;
 use crate::math::Transform;
 
 /// One part of a compound: a shape placed at `pose` in the compound's frame.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CompoundChild {
     pub pose: Transform,
     pub shape: Shape,
 }
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Compound {
     children: Vec<CompoundChild>,
 }

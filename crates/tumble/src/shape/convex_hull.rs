@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use crate::math::{is_finite_vec, DVec3};
 
 /// Why a point set has no usable convex hull.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 pub enum HullError {
     #[error("convex hull needs at least 4 points, got {count}")]
     TooFewPoints { count: usize },
@@ -32,7 +32,7 @@ pub enum HullError {
 }
 
 /// A polygonal face of a hull, in the hull's local frame.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HullFace {
     /// Outward unit normal.
     pub normal: DVec3,
@@ -45,14 +45,14 @@ pub struct HullFace {
 /// An edge of a hull with its two faces. `faces[0]` walks it `vertices[0] → vertices[1]`,
 /// `faces[1]` walks it the other way, so `faces[0].normal × faces[1].normal` points along
 /// `vertices[1] − vertices[0]`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HullEdge {
     pub vertices: [u32; 2],
     pub faces: [u32; 2],
 }
 
 /// A convex polyhedron in its local frame.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ConvexHull {
     vertices: Vec<DVec3>,
     faces: Vec<HullFace>,
@@ -191,7 +191,7 @@ impl ConvexHull {
 
 /// Distances below which points count as on a plane, scaled to the input so that metres and
 /// millimetres behave alike, and far-from-origin input keeps room for round-off.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
 struct Tolerances {
     /// A point must be this far in front of a face to be outside it.
     outside: f64,

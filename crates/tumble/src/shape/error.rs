@@ -1,7 +1,7 @@
 //! Errors from building the static-geometry shapes (plane, height field).
 
 /// Why a plane or height field cannot be built. Every variant says what and where.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 pub enum ShapeError {
     #[error("plane normal must be finite and non-zero, got ({x}, {y}, {z})")]
     BadPlaneNormal { x: f64, y: f64, z: f64 },

@@ -20,7 +20,7 @@ use crate::collision::aabb::Aabb;
 use crate::collision::triangle::ray_triangle;
 use crate::math::DVec3;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HeightField {
     heights: Vec<f64>,
     rows: usize,

@@ -22,7 +22,7 @@ pub use primitives::{Capsule, Cone, Cuboid, Cylinder, Sphere};
 pub use trimesh::TriMesh;
 
 /// A shape attached to a body.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Shape {
     Sphere(Sphere),
     Cuboid(Cuboid),

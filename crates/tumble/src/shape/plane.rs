@@ -9,7 +9,7 @@ use crate::math::DVec3;
 ///
 /// A plane is static-only: a body with one must be static (`World::add_body` refuses anything
 /// else). For the broad phase it is bounded to a box [`PLANE_EXTENT`] metres from the origin.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Plane {
     /// Outward unit normal (pointing out of the solid).
     pub normal: DVec3,

@@ -5,7 +5,7 @@ use crate::mass::MassError;
 use crate::math::DVec3;
 
 /// A ball of `radius` centred on the origin.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Sphere {
     pub radius: f64,
 }
@@ -17,7 +17,7 @@ impl Sphere {
 }
 
 /// A box with the given half extents along local X, Y, Z, centred on the origin.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Cuboid {
     pub half_extents: DVec3,
 }
@@ -32,7 +32,7 @@ impl Cuboid {
 }
 
 /// A segment from (0, 0, −half_height) to (0, 0, +half_height) swept by a ball of `radius`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Capsule {
     pub radius: f64,
     pub half_height: f64,
@@ -48,7 +48,7 @@ impl Capsule {
 }
 
 /// A solid circular cylinder along local Z, from z = −half_height to z = +half_height.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Cylinder {
     pub radius: f64,
     pub half_height: f64,
@@ -65,7 +65,7 @@ impl Cylinder {
 
 /// A solid circular cone along local Z: base disc of `radius` at z = −half_height, apex at
 /// z = +half_height. Its centre of mass is at z = −half_height / 2, not at the origin.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Cone {
     pub radius: f64,
     pub half_height: f64,

@@ -27,7 +27,7 @@ use crate::math::DVec3;
 /// two inconsistently wound ones).
 pub const NO_NEIGHBOR: u32 = u32::MAX;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TriMesh {
     vertices: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
@@ -36,7 +36,7 @@ pub struct TriMesh {
     data: Arc<MeshData>,
 }
 
-#[derive(Debug, PartialEq)]
+#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 struct MeshData {
     bvh: MeshBvh,
     normals: Vec<DVec3>,

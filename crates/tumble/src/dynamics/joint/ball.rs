@@ -22,7 +22,7 @@ use crate::math::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Settings of a ball joint.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BallJoint {
     /// Largest angle between the joint axes of the two bodies (the cone's half-angle), rad, in
     /// `[0, π]`. `None`: free.
@@ -33,7 +33,7 @@ pub struct BallJoint {
 }
 
 /// Solver state of a ball joint.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct BallParts {
     point: PointPart,
     swing: AngularAxisPart,

@@ -21,7 +21,7 @@ use crate::dynamics::solver_body::SolverBody;
 
 /// Settings of a distance joint. The anchor on b is `JointDef::anchor_b_world` (default: the
 /// same point as the anchor on a, which only makes sense with `min_length = 0`).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DistanceJoint {
     /// The rigid length, or the spring's rest length, m. `None`: the distance at creation
     /// (clamped into `[min_length, max_length]`).
@@ -42,7 +42,7 @@ impl Default for DistanceJoint {
 }
 
 /// Solver state of a distance joint.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct DistanceParts {
     axial: AxisPart,
     lower: AxisPart,

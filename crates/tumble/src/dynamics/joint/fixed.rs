@@ -8,11 +8,11 @@ use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
 
 /// Settings of a fixed joint (none: it holds the bodies as they were at creation).
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FixedJoint {}
 
 /// Solver state of a fixed joint.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct FixedParts {
     point: PointPart,
     rotation: RotationPart,

@@ -19,7 +19,7 @@ use crate::math::{DQuat, DVec3, Transform};
 use std::f64::consts::{PI, TAU};
 
 /// The joint frames relative to the centres of mass, fixed for one step.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct JointFrames {
     /// Anchor offsets from each centre of mass, body frames.
     pub r_a_local: DVec3,
@@ -59,7 +59,7 @@ impl JointFrames {
 }
 
 /// Both joint frames now, world frame.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct JointPose {
     /// Anchor offsets from the centres of mass.
     pub r_a: DVec3,

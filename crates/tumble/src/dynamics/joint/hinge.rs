@@ -20,7 +20,7 @@ use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
 
 /// Settings of a hinge joint. The hinge axis is the joint axis (`JointDef::axis_world`).
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HingeJoint {
     /// Range of the hinge angle, rad, within `[−π, π]`. `None`: free.
     pub limits: Option<Limits>,
@@ -33,7 +33,7 @@ pub struct HingeJoint {
 }
 
 /// Solver state of a hinge joint.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct HingeParts {
     point: PointPart,
     rotation: HingeRotationPart,

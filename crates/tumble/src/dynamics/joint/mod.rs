@@ -44,7 +44,7 @@ use crate::math::{DQuat, DVec3, Transform};
 use frames::{JointFrames, JointPose};
 
 /// The kind of a joint and its settings.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum JointKind {
     /// Ball-and-socket: the anchor points coincide; rotation is free (optionally limited).
     Ball(BallJoint),
@@ -83,7 +83,7 @@ impl JointKind {
 }
 
 /// The solver state of a joint: the accumulated impulses of its parts.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) enum JointParts {
     Ball(ball::BallParts),
     Hinge(hinge::HingeParts),
@@ -130,7 +130,7 @@ pub(crate) fn hard_softness(ctx: &StepContext, use_bias: bool) -> Softness {
 }
 
 /// Everything needed to create a joint.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct JointDef {
     pub name: String,
     pub body_a: BodyId,
@@ -180,7 +180,7 @@ impl JointDef {
 }
 
 /// A joint in the world.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Joint {
     pub(crate) name: String,
     pub(crate) body_a: BodyId,

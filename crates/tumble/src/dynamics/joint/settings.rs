@@ -6,7 +6,7 @@
 use std::f64::consts::PI;
 
 /// A range `[lower, upper]` the joint coordinate must stay in.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Limits {
     pub lower: f64,
     pub upper: f64,
@@ -20,7 +20,7 @@ impl Limits {
 
 /// A velocity motor: drives the joint speed to `target_speed` (rad/s or m/s) with at most
 /// `max_force` (N·m for angular joints, N for linear ones).
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Motor {
     pub target_speed: f64,
     pub max_force: f64,
@@ -36,7 +36,7 @@ impl Motor {
 /// (0 = undamped, 1 = critically damped). The stiffness follows from the frequency and the
 /// effective mass of the joint row, `k = m_eff (2π·hertz)²`, so a spring keeps its frequency
 /// whatever it carries; `hertz = 0` means no spring force.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct SpringSettings {
     pub hertz: f64,
     pub damping_ratio: f64,

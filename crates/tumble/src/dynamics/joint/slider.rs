@@ -19,7 +19,7 @@ use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
 
 /// Settings of a slider joint. The slide direction is the joint axis (`JointDef::axis_world`).
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SliderJoint {
     /// Range of the translation of b's anchor along the axis from a's, m. `None`: free.
     pub limits: Option<Limits>,
@@ -32,7 +32,7 @@ pub struct SliderJoint {
 }
 
 /// Solver state of a slider joint.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct SliderParts {
     rotation: RotationPart,
     perpendicular: [AxisPart; 2],

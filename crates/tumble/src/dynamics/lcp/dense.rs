@@ -5,7 +5,7 @@
 use std::ops::{Index, IndexMut};
 
 /// A dense, row-major matrix of `f64`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DenseMatrix {
     rows: usize,
     cols: usize,
@@ -115,7 +115,7 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// `P A = L U` with unit lower-triangular `L` and upper-triangular `U` stored in one matrix.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Lu {
     lu: DenseMatrix,
     /// `perm[k]` is the original row now in position `k`.
@@ -123,7 +123,7 @@ pub(crate) struct Lu {
 }
 
 /// Where elimination broke down: the step and the (tiny) pivot it found there.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Singular {
     pub step: usize,
     pub pivot: f64,

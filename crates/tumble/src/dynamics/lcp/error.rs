@@ -2,7 +2,7 @@
 
 /// Errors from the exact (LCP) solver: bad input, found before any arithmetic, or a pivoting
 /// algorithm that could not finish.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 pub enum LcpError {
     #[error(
         "too many rows: {rows}, the exact solver takes at most {max} (its cost grows like the cube of the \

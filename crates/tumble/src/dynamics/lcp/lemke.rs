@@ -32,7 +32,7 @@ use super::dense::{DenseMatrix, Lu};
 use super::error::LcpError;
 
 /// A solution of `w = M z + q, w ≥ 0, z ≥ 0, wᵀz = 0`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LcpSolution {
     pub z: Vec<f64>,
     /// `M z + q`, recomputed from the final `z`.

@@ -58,7 +58,7 @@ use super::lemke::solve_lcp;
 use super::system::RowKind;
 
 /// Impulses of the mixed problem and what the LCP took.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub(crate) struct MixedSolution {
     pub lambda: Vec<f64>,
     pub pivots: usize,

@@ -53,7 +53,7 @@ pub use rows::{ball_joint_rows, contact_rows, point_row, Anchor, ContactPoint};
 pub use system::{apply_impulses, BodyVelocity, ConstraintSystem, LcpBody, Row, RowKind, MAX_ROWS};
 
 /// The exact impulses of a system and what they do.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ExactSolution {
     /// `λ` per row, in the order of the rows.
     pub impulses: Vec<f64>,

@@ -17,7 +17,7 @@ use crate::math::DVec3;
 
 /// One body of a point row: index (or `None` for the world) and the point relative to its centre
 /// of mass (ignored for the world).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Anchor {
     pub body: Option<usize>,
     pub r: DVec3,
@@ -45,7 +45,7 @@ pub fn point_row(a: Anchor, b: Anchor, direction: DVec3, kind: RowKind) -> Row {
 }
 
 /// A contact point between `a` and `b`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactPoint {
     pub a: Anchor,
     pub b: Anchor,

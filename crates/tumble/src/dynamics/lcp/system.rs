@@ -26,7 +26,7 @@ pub const MAX_ROWS: usize = 128;
 
 /// A body as the solver sees it: inverse mass and world-frame inverse inertia about the centre of
 /// mass. Static (and kinematic) bodies have both zero.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LcpBody {
     pub inverse_mass: f64,
     pub inverse_inertia_world: DMat3,
@@ -42,7 +42,7 @@ impl LcpBody {
 }
 
 /// The velocity of a body: centre of mass velocity and angular velocity, world frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BodyVelocity {
     pub linear: DVec3,
     pub angular: DVec3,
@@ -55,7 +55,7 @@ impl BodyVelocity {
 }
 
 /// What a row asks of its impulse `λ` and velocity `w = J v⁺ + bias`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum RowKind {
     /// A joint row: `w = 0`, `λ` free.
     Equality,
@@ -76,7 +76,7 @@ pub enum RowKind {
 }
 
 /// One constraint row; see the module documentation for the meaning of the Jacobian.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Row {
     /// First body, or `None` for the fixed world.
     pub body_a: Option<usize>,
@@ -112,7 +112,7 @@ impl Row {
 
 /// The assembled system: `A = J M⁻¹ Jᵀ` (dense, symmetric, positive semidefinite) and the free row
 /// velocities `b = J v + bias`, `v` being the velocities before any impulse.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ConstraintSystem {
     pub a: DenseMatrix,
     pub b: Vec<f64>,

@@ -13,7 +13,7 @@ use super::{invert_scalar_or_zero, RowDrive};
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
 
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct AngularAxisPart {
     /// Accumulated angular impulse about the row's axis.
     pub impulse: f64,

@@ -20,7 +20,7 @@ use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
 
 /// The Jacobian of one linear row: `Ċ = linear·(v_b − v_a) + angular_b·ω_b − angular_a·ω_a`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub(crate) struct AxisJacobian {
     pub linear: DVec3,
     pub angular_a: DVec3,
@@ -68,7 +68,7 @@ impl AxisJacobian {
 }
 
 /// A scalar linear row and its accumulated impulse.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct AxisPart {
     pub impulse: f64,
 }

@@ -20,14 +20,14 @@ use crate::dynamics::solver_body::SolverBody;
 use crate::math::{DMat3, DVec3};
 use glam::{DMat2, DVec2};
 
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct HingeRotationPart {
     /// Accumulated impulses of the two rows.
     pub impulse: DVec2,
 }
 
 /// The current geometry of the two rows, all world frame.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct HingeAxes {
     /// Hinge axis fixed in body a.
     pub axis_a: DVec3,

@@ -83,7 +83,7 @@ pub(crate) fn apply_angular_impulse(a: &mut SolverBody, b: &mut SolverBody, l: D
 /// How one scalar row is driven in one solve: the velocity `bias` added to `Ċ`, the soft
 /// coefficients and the bounds on the accumulated impulse. The constructors are the four ways a
 /// joint uses a row (equality, spring, motor, limit), so every joint drives rows the same way.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub(crate) struct RowDrive {
     pub bias: f64,
     pub mass_scale: f64,

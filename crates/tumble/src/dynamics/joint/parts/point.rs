@@ -19,7 +19,7 @@ use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
 
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct PointPart {
     /// Accumulated linear impulse on body b (−impulse on a), world frame.
     pub impulse: DVec3,

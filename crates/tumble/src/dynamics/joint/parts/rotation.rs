@@ -17,7 +17,7 @@ use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::{DQuat, DVec3};
 
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct RotationPart {
     /// Accumulated angular impulse on body b (−impulse on a), world frame.
     pub impulse: DVec3,
