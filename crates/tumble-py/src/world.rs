@@ -509,6 +509,28 @@ impl World {
         Ok(World { inner: queries::world_from_scene(&path)? })
     }
 
+    // ---- snapshots --------------------------------------------------------------------------------
+
+    /// The world's complete state as bytes: `World.load(data)` rebuilds a world whose future is
+    /// bit-identical to this one's.
+    fn save<'py>(&self, py: Python<'py>) -> Bound<'py, pyo3::types::PyBytes> {
+        pyo3::types::PyBytes::new(py, &self.inner.snapshot())
+    }
+
+    /// A world rebuilt from `save()` bytes; a truncated, foreign or damaged snapshot raises
+    /// `TumbleValueError` saying which.
+    #[staticmethod]
+    fn load(data: &[u8]) -> PyResult<World> {
+        tumble::World::restore(data)
+            .map(|inner| World { inner })
+            .map_err(|e| crate::errors::value_error(e.to_string()))
+    }
+
+    /// A 64-bit fingerprint of the exact state: equal hashes mean bit-identical worlds.
+    fn state_hash(&self) -> u64 {
+        self.inner.state_hash()
+    }
+
     // ---- stepping -------------------------------------------------------------------------------
 
     /// Advances the world by `n` steps of `dt` seconds, with the GIL released.

@@ -448,6 +448,13 @@ class World:
     def potential_energy(self) -> float: ...
     def linear_momentum(self) -> _F64: ...
     def angular_momentum(self, about: Optional[_Vec3] = None) -> _F64: ...
+    def save(self) -> bytes:
+        """The world's complete state; `World.load(data)` rebuilds a world with a bit-identical future."""
+    @staticmethod
+    def load(data: bytes) -> World:
+        """A world rebuilt from `save()` bytes; damaged data raises TumbleValueError."""
+    def state_hash(self) -> int:
+        """A 64-bit fingerprint of the exact state."""
     def step(self, dt: float, n: int = 1) -> None:
         """Advances n steps of dt seconds with the GIL released."""
     positions: _F64
