@@ -49,17 +49,19 @@ def test_sphere_rests_on_a_heightfield():
     r = 0.3
     rows, cols = 21, 21
     y, x = np.mgrid[0:rows, 0:cols]
-    heights = 0.05 * np.sin(0.3 * x) * np.cos(0.2 * y)  # gentle terrain
+    # Bumpy terrain with a flat 1.5 m × 1.5 m patch at height 0.1 m in the middle.
+    heights = 0.1 + 0.05 * np.sin(0.9 * x) * np.cos(0.7 * y)
+    heights[7:14, 7:14] = 0.1
     w = tumble.World(gravity=(0, 0, -9.81))
-    w.add_body(tumble.HeightField(heights, (0.5, 0.5, 1.0)), kind="static")
-    b = w.add_body(tumble.Sphere(r), density=1000.0, position=(0, 0, 1.0))
-    w.step(1 / 60, n=300)
+    w.add_body(tumble.HeightField(heights, (0.25, 0.25, 1.0)), kind="static")
+    b = w.add_body(tumble.Sphere(r), density=1000.0, position=(0.1, 0.05, 1.0))
+    w.step(1 / 60, n=240)
     body = w.body(b)
     assert np.linalg.norm(body.linear_velocity) < 0.05
     z = body.position[2]
-    # Above the terrain and not sunk into it: centre near r above the local surface.
-    assert -0.1 + r < z < 0.1 + r, z
     assert math.isfinite(z)
+    assert abs(z - (0.1 + r)) < 2e-3, z  # resting on the patch, not sunk into it
+    assert np.linalg.norm(body.position[:2] - (0.1, 0.05)) < 0.01  # and it did not roll away
 
 
 def test_bad_planes_and_heightfields_raise_value_errors():
