@@ -103,10 +103,12 @@ impl Body {
 
 #[pymethods]
 impl Body {
+    /// The body's handle (`BodyId`).
     #[getter]
     fn id(&self) -> BodyId {
         self.id
     }
+    /// The body's name ("" if none was given).
     #[getter]
     fn name(&self, py: Python<'_>) -> PyResult<String> {
         self.read(py, |b| b.name().to_string())
@@ -222,14 +224,17 @@ impl Body {
     fn torque<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         self.read(py, |b| vec3_out(py, b.torque()))
     }
+    /// Linear velocity damping rate, 1/s.
     #[getter]
     fn linear_damping(&self, py: Python<'_>) -> PyResult<f64> {
         self.read(py, |b| b.linear_damping())
     }
+    /// Angular velocity damping rate, 1/s.
     #[getter]
     fn angular_damping(&self, py: Python<'_>) -> PyResult<f64> {
         self.read(py, |b| b.angular_damping())
     }
+    /// Multiplier on the world's gravity for this body.
     #[getter]
     fn gravity_scale(&self, py: Python<'_>) -> PyResult<f64> {
         self.read(py, |b| b.gravity_scale())

@@ -153,10 +153,12 @@ impl Joint {
 
 #[pymethods]
 impl Joint {
+    /// The joint's handle (`JointId`).
     #[getter]
     fn id(&self) -> JointId {
         self.id
     }
+    /// The joint's name ("" if none was given).
     #[getter]
     fn name(&self, py: Python<'_>) -> PyResult<String> {
         self.read(py, |_, j| Ok(j.name().to_string()))
@@ -166,10 +168,12 @@ impl Joint {
     fn kind(&self, py: Python<'_>) -> PyResult<&'static str> {
         self.read(py, |_, j| Ok(j.kind().name()))
     }
+    /// The first body (`BodyId`).
     #[getter]
     fn body_a(&self, py: Python<'_>) -> PyResult<BodyId> {
         self.read(py, |_, j| Ok(BodyId(j.body_a())))
     }
+    /// The second body (`BodyId`).
     #[getter]
     fn body_b(&self, py: Python<'_>) -> PyResult<BodyId> {
         self.read(py, |_, j| Ok(BodyId(j.body_b())))

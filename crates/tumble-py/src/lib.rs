@@ -74,6 +74,8 @@ fn _tumble(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<shapes::TriMeshShape>()?;
     m.add_class::<shapes::CompoundShape>()?;
     m.add_class::<shapes::ConvexHullShape>()?;
+    m.add_class::<shapes::PlaneShape>()?;
+    m.add_class::<shapes::HeightFieldShape>()?;
     m.add_class::<mass::MassProperties>()?;
     m.add_function(wrap_pyfunction!(mass::mass_properties, m)?)?;
     Ok(())

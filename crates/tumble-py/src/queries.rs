@@ -15,8 +15,10 @@ use crate::errors::value_error;
 /// surface `normal` (world frame).
 #[pyclass(frozen, module = "tumble")]
 pub struct RayHit {
+    /// The body hit (`BodyId`).
     #[pyo3(get)]
     body: BodyId,
+    /// Distance from the ray origin to the hit, m (along the unit direction).
     #[pyo3(get)]
     distance: f64,
     point_world: DVec3,

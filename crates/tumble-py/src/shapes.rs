@@ -1,8 +1,7 @@
 //! Shapes: `tumble.Shape` and one Python subclass per core shape. A shape object is immutable
 //! and holds the core's `tumble::Shape`, validated by the core's constructors.
 //!
-//! New core shapes (convex hull, height field, plane) slot in as one more subclass here and one
-//! more arm in `shape_to_py`.
+//! A new core shape slots in as one more subclass here and one more arm in `shape_to_py`.
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
@@ -25,8 +24,8 @@ impl Shape {
         Ok(MassProperties(self.0.mass_properties(density).py()?))
     }
 
-    /// The shape kind: "sphere", "box", "capsule", "cylinder", "cone", "hull", "mesh" or
-    /// "compound".
+    /// The shape kind: "sphere", "box", "capsule", "cylinder", "cone", "hull", "mesh",
+    /// "compound", "plane" or "heightfield".
     #[getter]
     fn kind(&self) -> &'static str {
         self.0.kind_name()
@@ -50,7 +49,15 @@ impl Shape {
                 format!("ConvexHull({} vertices, {} faces)", h.vertices().len(), h.faces().len())
             }
             tumble::Shape::Compound(c) => format!("Compound({} parts)", c.children().len()),
-            other => format!("{}(…)", other.kind_name()),
+            tumble::Shape::Plane(p) => {
+                format!("Plane(normal={:?}, offset={})", p.normal.to_array(), p.offset)
+            }
+            tumble::Shape::HeightField(h) => format!(
+                "HeightField({} rows x {} cols, scale={:?})",
+                h.rows(),
+                h.cols(),
+                h.scale().to_array()
+            ),
         }
     }
 
@@ -85,8 +92,8 @@ pub fn shape_to_py(py: Python<'_>, shape: &tumble::Shape) -> PyResult<Py<PyAny>>
         tumble::Shape::TriMesh(_) => new_shape(py, s, TriMeshShape),
         tumble::Shape::ConvexHull(_) => new_shape(py, s, ConvexHullShape),
         tumble::Shape::Compound(_) => new_shape(py, s, CompoundShape),
-        // Shapes without a Python class of their own yet come back as the base class.
-        _ => Ok(Py::new(py, Shape(s))?.into_any()),
+        tumble::Shape::Plane(_) => new_shape(py, s, PlaneShape),
+        tumble::Shape::HeightField(_) => new_shape(py, s, HeightFieldShape),
     }
 }
 
@@ -100,6 +107,7 @@ impl SphereShape {
     fn new(radius: f64) -> PyResult<PyClassInitializer<Self>> {
         Ok(init(tumble::Shape::Sphere(Sphere::new(radius).py()?), SphereShape))
     }
+    /// The radius, m.
     #[getter]
     fn radius(slf: PyRef<'_, Self>) -> f64 {
         match &slf.as_super().0 {
@@ -120,6 +128,7 @@ impl BoxShape {
         let he = vec3(half_extents, "half_extents")?;
         Ok(init(tumble::Shape::Cuboid(Cuboid::new(he).py()?), BoxShape))
     }
+    /// Half extents (x, y, z), m.
     #[getter]
     fn half_extents<'py>(slf: PyRef<'py, Self>) -> Bound<'py, PyArray1<f64>> {
         match &slf.as_super().0 {
@@ -151,10 +160,12 @@ macro_rules! axial_shape {
             fn new(radius: f64, half_height: f64) -> PyResult<PyClassInitializer<Self>> {
                 Ok(init(tumble::Shape::$variant($core::new(radius, half_height).py()?), $rust))
             }
+            /// The radius, m.
             #[getter]
             fn radius(slf: PyRef<'_, Self>) -> f64 {
                 radius_half_height(&slf.as_super().0).0
             }
+            /// Half the length of the axis along local Z, m.
             #[getter]
             fn half_height(slf: PyRef<'_, Self>) -> f64 {
                 radius_half_height(&slf.as_super().0).1
@@ -231,11 +242,13 @@ impl TriMeshShape {
         let mesh = TriMesh::new(self::vertices(vertices)?, self::triangles(triangles)?).py()?;
         Ok(init(tumble::Shape::TriMesh(mesh), TriMeshShape))
     }
+    /// The mesh vertices, (N, 3).
     #[getter]
     fn vertices<'py>(slf: PyRef<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows: Vec<[f64; 3]> = Self::mesh(&slf).vertices().iter().map(|v| v.to_array()).collect();
         rows_out(slf.py(), &rows)
     }
+    /// The triangles as vertex indices, (M, 3) uint32.
     #[getter]
     fn triangles<'py>(slf: PyRef<'py, Self>) -> PyResult<Bound<'py, PyArray2<u32>>> {
         let tris = Self::mesh(&slf).triangles();
@@ -324,5 +337,107 @@ impl CompoundShape {
             })
             .collect::<PyResult<Vec<_>>>()?;
         PyList::new(py, items)
+    }
+}
+
+/// A core shape error (`tumble::ShapeError`) as `TumbleValueError`, with the core's message.
+fn shape_error(e: tumble::ShapeError) -> PyErr {
+    value_error(e.to_string())
+}
+
+/// The half-space `normal · x <= offset`: the solid lies below the plane whose outward unit
+/// `normal` (x, y, z; normalised here, any finite non-zero length) points out of it, `offset`
+/// metres from the origin along the normal. `Plane((0, 0, 1), 0.0)` is a floor at z = 0.
+/// Static bodies only (a plane has no finite mass).
+#[pyclass(name = "Plane", extends = Shape, frozen, module = "tumble")]
+pub struct PlaneShape;
+
+impl PlaneShape {
+    fn plane<'a>(slf: &'a PyRef<'_, Self>) -> &'a tumble::Plane {
+        match &slf.as_super().0 {
+            tumble::Shape::Plane(p) => p,
+            _ => unreachable!("a Plane object holds a plane"),
+        }
+    }
+}
+
+#[pymethods]
+impl PlaneShape {
+    #[new]
+    #[pyo3(signature = (normal = None, offset = 0.0))]
+    fn new(normal: Option<&Bound<'_, PyAny>>, offset: f64) -> PyResult<PyClassInitializer<Self>> {
+        let n = match normal {
+            Some(n) => vec3(n, "normal")?,
+            None => tumble::DVec3::Z,
+        };
+        let plane = tumble::Plane::new(n, offset).map_err(shape_error)?;
+        Ok(init(tumble::Shape::Plane(plane), PlaneShape))
+    }
+    /// The outward unit normal (x, y, z).
+    #[getter]
+    fn normal<'py>(slf: PyRef<'py, Self>) -> Bound<'py, PyArray1<f64>> {
+        vec3_out(slf.py(), Self::plane(&slf).normal)
+    }
+    /// Signed distance of the surface from the origin along the normal, m.
+    #[getter]
+    fn offset(slf: PyRef<'_, Self>) -> f64 {
+        Self::plane(&slf).offset
+    }
+}
+
+/// Terrain from a grid of heights: `heights` a 2-D array-like (rows, cols), row-major; columns
+/// run along local +X, rows along local +Y, the grid is centred on the origin in X and Y.
+/// `scale` (x, y, z): spacing between columns, spacing between rows, and the factor applied to
+/// the heights. Sample (row, col) sits at
+/// ((col - (cols-1)/2)·sx, (row - (rows-1)/2)·sy, heights[row, col]·sz). Collides on its upper
+/// side only. Static bodies only.
+#[pyclass(name = "HeightField", extends = Shape, frozen, module = "tumble")]
+pub struct HeightFieldShape;
+
+impl HeightFieldShape {
+    fn field<'a>(slf: &'a PyRef<'_, Self>) -> &'a tumble::HeightField {
+        match &slf.as_super().0 {
+            tumble::Shape::HeightField(h) => h,
+            _ => unreachable!("a HeightField object holds a height field"),
+        }
+    }
+}
+
+#[pymethods]
+impl HeightFieldShape {
+    #[new]
+    #[pyo3(signature = (heights, scale = None))]
+    fn new(
+        heights: &Bound<'_, PyAny>,
+        scale: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<PyClassInitializer<Self>> {
+        let (dims, flat) = floats(heights, "heights", &[None, None])?;
+        let scale = match scale {
+            Some(s) => vec3(s, "scale")?,
+            None => tumble::DVec3::ONE,
+        };
+        let field = tumble::HeightField::new(flat, dims[0], dims[1], scale).map_err(shape_error)?;
+        Ok(init(tumble::Shape::HeightField(field), HeightFieldShape))
+    }
+    /// The raw (unscaled) heights, (rows, cols).
+    #[getter]
+    fn heights<'py>(slf: PyRef<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let h = Self::field(&slf);
+        PyArray1::from_slice(slf.py(), h.heights()).reshape([h.rows(), h.cols()])
+    }
+    /// The scale (x spacing, y spacing, height factor).
+    #[getter]
+    fn scale<'py>(slf: PyRef<'py, Self>) -> Bound<'py, PyArray1<f64>> {
+        vec3_out(slf.py(), Self::field(&slf).scale())
+    }
+    /// Number of sample rows (along local Y).
+    #[getter]
+    fn rows(slf: PyRef<'_, Self>) -> usize {
+        Self::field(&slf).rows()
+    }
+    /// Number of sample columns (along local X).
+    #[getter]
+    fn cols(slf: PyRef<'_, Self>) -> usize {
+        Self::field(&slf).cols()
     }
 }

@@ -23,7 +23,14 @@ use crate::mass::MassProperties;
 use crate::queries::{self, RayHit};
 use crate::shapes::Shape;
 
-/// A rigid-body world. `World(gravity=(0, 0, -9.81), substeps=4, sleep=True)`.
+/// A rigid-body world: bodies, joints and the solver that steps them.
+///
+/// `World(gravity=(0, 0, -9.81), substeps=4, sleep=True)`: gravity in m/s² (Z up), solver
+/// substeps per step, and whether resting bodies may fall asleep. Add bodies with `add_body`,
+/// joints with `add_*_joint`, advance with `step(dt, n=1)`; read and write the whole state as
+/// NumPy arrays (`positions`, `orientations`, `linear_velocities`, `angular_velocities`, one row
+/// per body in body-slot order, see `body_ids`). `World.from_scene(path)` builds a TOML scene,
+/// `save()` / `World.load(data)` snapshot a world exactly.
 #[pyclass(module = "tumble")]
 pub struct World {
     pub inner: tumble::World,
@@ -74,18 +81,22 @@ impl World {
     fn time(&self) -> f64 {
         self.inner.time()
     }
+    /// Number of steps taken so far.
     #[getter]
     fn step_count(&self) -> u64 {
         self.inner.step_count()
     }
+    /// Number of live bodies (also `len(world)`).
     #[getter]
     fn body_count(&self) -> usize {
         self.inner.body_count()
     }
+    /// Number of dynamic bodies that are awake (not sleeping).
     #[getter]
     fn awake_body_count(&self) -> usize {
         self.inner.awake_body_count()
     }
+    /// Number of live joints.
     #[getter]
     fn joint_count(&self) -> usize {
         self.inner.joint_count()
@@ -114,7 +125,7 @@ impl World {
         position = None, orientation = None, linear_velocity = None, angular_velocity = None,
         kind = "dynamic", name = "", linear_damping = 0.0, angular_damping = 0.0,
         gravity_scale = 1.0, allow_sleep = true, friction = 0.6, restitution = 0.0,
-        rolling_friction = 0.0, torsional_friction = 0.0, group = 1, mask = u32::MAX, sensor = false))]
+        rolling_friction = 0.0, torsional_friction = 0.0, group = 1, mask = 4294967295, sensor = false))]
     #[allow(clippy::too_many_arguments)]
     fn add_body(
         &mut self,
@@ -190,6 +201,7 @@ impl World {
         self.inner.set_pose(body.0, p, q).py()
     }
 
+    /// Wakes `body` (and the island it rests in) if it is asleep.
     fn wake_body(&mut self, body: BodyId) -> PyResult<()> {
         self.inner.wake_body(body.0).py()
     }
@@ -295,7 +307,7 @@ impl World {
 
     /// Distance joint between `anchor_a` on a and `anchor_b` on b (world frame, at creation):
     /// rigid at `length` (default: the distance now), or a `spring` = (hertz, damping_ratio);
-    /// always within [`min_length`, `max_length`].
+    /// always within [`min_length`, `max_length`] (default 0 and infinity).
     #[pyo3(signature = (a, b, anchor_a, anchor_b, *, length = None, min_length = 0.0,
         max_length = f64::INFINITY, spring = None, name = "", break_force = None, collide_connected = false))]
     #[allow(clippy::too_many_arguments)]
@@ -447,10 +459,10 @@ impl World {
     }
 
     /// The closest body hit by the ray from `origin` along `direction` (normalised) within
-    /// `max_distance`, as a `RayHit`, or None. Sensors are skipped unless `include_sensors`; the
+    /// `max_distance` (default infinity), as a `RayHit`, or None. Sensors are skipped unless `include_sensors`; the
     /// ray's `group`/`mask` filter bodies like a shape's.
     #[pyo3(signature = (origin, direction, max_distance = f64::INFINITY, *, include_sensors = false,
-        group = u32::MAX, mask = u32::MAX))]
+        group = 4294967295, mask = 4294967295))]
     fn raycast(
         &self,
         origin: &Bound<'_, PyAny>,
@@ -468,7 +480,7 @@ impl World {
 
     /// Every body the ray hits (each once, its closest hit), sorted by distance then body.
     #[pyo3(signature = (origin, direction, max_distance = f64::INFINITY, *, include_sensors = false,
-        group = u32::MAX, mask = u32::MAX))]
+        group = 4294967295, mask = 4294967295))]
     fn raycast_all(
         &self,
         origin: &Bound<'_, PyAny>,

@@ -456,7 +456,9 @@ impl World {
 
     // ---- changing state -------------------------------------------------------------------
 
-    /// Places the body frame's origin at `position` with `orientation` (normalised).
+    /// Places the body frame's origin at `position` with `orientation` (normalised; one that is
+    /// already unit to rounding is kept bit for bit, so a pose read from a body and written back
+    /// leaves the body exactly as it was).
     pub fn set_pose(
         &mut self,
         id: BodyId,
@@ -470,7 +472,12 @@ impl World {
         }
         self.wake_body(id)?;
         let body = self.body_mut(id)?;
-        let rotation = orientation.normalize();
+        // Renormalising a quaternion that is unit to rounding would still change its last bits.
+        let rotation = if (orientation.length_squared() - 1.0).abs() <= 4.0 * f64::EPSILON {
+            orientation
+        } else {
+            orientation.normalize()
+        };
         body.state.rotation = rotation;
         body.state.com_world = position + rotation * body.com_local;
         // Keep the broad phase in step with the pose, so queries see the body where it now is.

@@ -82,7 +82,9 @@ class Shape:
     """A shape in its own frame. Capsule, cylinder and cone lie along local Z."""
 
     @property
-    def kind(self) -> Literal["sphere", "box", "capsule", "cylinder", "cone", "hull", "mesh", "compound"]: ...
+    def kind(
+        self,
+    ) -> Literal["sphere", "box", "capsule", "cylinder", "cone", "hull", "mesh", "compound", "plane", "heightfield"]: ...
     def mass_properties(self, density: float = 1000.0) -> MassProperties: ...
 
 @final
@@ -151,6 +153,33 @@ class ConvexHull(Shape):
     @property
     def vertices(self) -> _F64:
         """The extreme points, (V, 3)."""
+
+class Plane(Shape):
+    """The half-space ``normal · x <= offset`` (solid below the plane). Static bodies only."""
+
+    def __init__(self, normal: _ArrayLike = (0.0, 0.0, 1.0), offset: float = 0.0) -> None: ...
+    @property
+    def normal(self) -> _F64:
+        """The outward unit normal (x, y, z)."""
+    @property
+    def offset(self) -> float:
+        """Signed distance of the surface from the origin along the normal, m."""
+
+class HeightField(Shape):
+    """Terrain from a (rows, cols) grid of heights, centred on the origin in X and Y; ``scale``
+    is (column spacing, row spacing, height factor). Static bodies only."""
+
+    def __init__(self, heights: _ArrayLike, scale: _ArrayLike = (1.0, 1.0, 1.0)) -> None: ...
+    @property
+    def heights(self) -> _F64:
+        """The raw (unscaled) heights, (rows, cols)."""
+    @property
+    def scale(self) -> _F64:
+        """(x spacing, y spacing, height factor)."""
+    @property
+    def rows(self) -> int: ...
+    @property
+    def cols(self) -> int: ...
 
 @final
 class RayHit:
