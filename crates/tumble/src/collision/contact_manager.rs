@@ -110,8 +110,9 @@ impl ContactManager {
         let Some(shape) = &body.shape else { return };
         let pose = body.transform();
         let displacement = body.state.linear_velocity * dt;
-        for (&key, (leaf, local)) in body.proxies.iter().zip(leaves(shape)) {
-            let aabb = shape_aabb(leaf, &pose.mul_transform(&local));
+        for (child, &key) in body.proxies.iter().enumerate() {
+            let (leaf_shape, local) = leaf(shape, child as u32);
+            let aabb = shape_aabb(leaf_shape, &pose.mul_transform(&local));
             self.broad_phase.move_proxy(key, aabb, displacement);
         }
     }
