@@ -635,7 +635,8 @@ impl World {
 
 /// Steps every world in `worlds` `n` times by `dt`, in parallel on all cores with the GIL
 /// released. Each world is stepped on its own, so the results are identical to stepping them one
-/// by one. A world may appear only once.
+/// by one. A world may appear only once. NumPy's OpenBLAS threads spin for a while after any
+/// BLAS call and compete for the same cores: set `OPENBLAS_NUM_THREADS=1` for full speed.
 #[pyfunction]
 #[pyo3(signature = (worlds, dt, n = 1))]
 pub fn step_many(py: Python<'_>, worlds: &Bound<'_, PyAny>, dt: f64, n: u64) -> PyResult<()> {
