@@ -33,13 +33,13 @@ pub(crate) use rotation::RotationPart;
 
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
-use crate::math::{hat, DMat3, DVec3};
+use crate::math::{hat, mat3_max_abs, DMat3, DVec3};
 
 /// Inverts a symmetric positive semi-definite 3×3 effective-mass matrix; a singular one (both
 /// bodies fixed, or a degenerate axis) gives zero, which disables the rows instead of producing NaN.
 pub(crate) fn invert_or_zero(k: DMat3) -> DMat3 {
     let det = k.determinant();
-    let scale = k.to_cols_array().iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+    let scale = mat3_max_abs(k);
     if scale == 0.0 || det.abs() <= 1e-12 * scale * scale * scale {
         DMat3::ZERO
     } else {
