@@ -25,8 +25,8 @@ use crate::shapes::Shape;
 
 /// A rigid-body world: bodies, joints and the solver that steps them.
 ///
-/// `World(gravity=(0, 0, -9.81), substeps=4, sleep=True)`: gravity in m/s² (Z up), solver
-/// substeps per step, and whether resting bodies may fall asleep. Add bodies with `add_body`,
+/// `World(gravity=(0, 0, -9.81), substeps=8, sleep=True)`: gravity in m/s² (Z up), solver
+/// substeps per step (default: the engine's, 8), and whether resting bodies may fall asleep. Add bodies with `add_body`,
 /// joints with `add_*_joint`, advance with `step(dt, n=1)`; read and write the whole state as
 /// NumPy arrays (`positions`, `orientations`, `linear_velocities`, `angular_velocities`, one row
 /// per body in body-slot order, see `body_ids`). `World.from_scene(path)` builds a TOML scene,
@@ -44,12 +44,12 @@ fn step_n(world: &mut tumble::World, dt: f64, n: u64) -> Result<(), tumble::Worl
 #[pymethods]
 impl World {
     #[new]
-    #[pyo3(signature = (gravity = None, substeps = 4, sleep = true))]
-    fn new(gravity: Option<&Bound<'_, PyAny>>, substeps: u32, sleep: bool) -> PyResult<Self> {
+    #[pyo3(signature = (gravity = None, substeps = None, sleep = true))]
+    fn new(gravity: Option<&Bound<'_, PyAny>>, substeps: Option<u32>, sleep: bool) -> PyResult<Self> {
         let def = WorldDef::default();
         let def = WorldDef {
             gravity: opt_vec3(gravity, "gravity")?.unwrap_or(def.gravity),
-            solver: SolverSettings { substeps, ..def.solver },
+            solver: SolverSettings { substeps: substeps.unwrap_or(def.solver.substeps), ..def.solver },
             sleep: SleepSettings { enabled: sleep, ..def.sleep },
         };
         Ok(World { inner: tumble::World::new(def).py()? })

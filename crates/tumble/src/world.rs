@@ -122,6 +122,7 @@ fn check_solver_settings(s: &SolverSettings) -> Result<(), WorldError> {
         ("contact_damping_ratio", s.contact_damping_ratio),
         ("max_contact_push_velocity", s.max_contact_push_velocity),
         ("restitution_threshold", s.restitution_threshold),
+        ("steady_load_time", s.steady_load_time),
     ] {
         if !v.is_finite() || v < 0.0 {
             return bad(format!("{what} must be finite and >= 0, got {v}"));

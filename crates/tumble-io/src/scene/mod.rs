@@ -6,7 +6,7 @@
 //! gravity = [0.0, 0.0, -9.81]    # m/s², default (0, 0, -9.81)
 //! dt = 0.004166666666666667      # s, default 1/240
 //! duration = 20.0                # s, default 10
-//! substeps = 4                   # solver (engine defaults): substeps, solve_iterations,
+//! substeps = 8                   # solver (engine defaults): substeps, solve_iterations,
 //! solve_iterations = 1           #   relax_iterations, contact_hertz, contact_damping_ratio,
 //! contact_hertz = 30.0           #   joint_hertz, joint_damping_ratio
 //! sleep = true                   # may resting islands fall asleep

@@ -4,7 +4,7 @@ Conventions: float64 everywhere, SI units, right-handed with **Z up** (default g
 (0, 0, -9.81)), quaternions as **(x, y, z, w)**.
 
     import tumble
-    w = tumble.World(gravity=(0, 0, -9.81), substeps=4)
+    w = tumble.World(gravity=(0, 0, -9.81), substeps=8)
     b = w.add_body(tumble.Box((0.5, 0.5, 0.5)), density=1000.0, position=(0, 0, 1))
     w.step(1 / 60, n=60)          # releases the GIL while stepping
     w.positions                   # (N, 3) float64, one row per body in body-slot order

@@ -310,7 +310,7 @@ class World:
     Reading copies; assigning checks the whole array first, so a bad array changes nothing.
     """
 
-    def __init__(self, gravity: Optional[_Vec3] = None, substeps: int = 4, sleep: bool = True) -> None: ...
+    def __init__(self, gravity: Optional[_Vec3] = None, substeps: Optional[int] = None, sleep: bool = True) -> None: ...
     gravity: _F64
     substeps: int
     @property

@@ -15,6 +15,12 @@
 
 use crate::math::DVec3;
 
+/// Distance, m, by which a vertex may lie outside a side plane and still count as inside. Equal
+/// faces stacked exactly on each other put the incident corners *on* the side planes, and without
+/// it round-off alone would decide, step by step, whether a corner stays or is cut — changing the
+/// points' identities and dropping their warm-start impulses.
+const SIDE_TOLERANCE: f64 = 1e-6;
+
 /// A vertex of a polygon being clipped.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ClipVertex {
@@ -48,6 +54,7 @@ impl ClipVertex {
 /// [`clip_segment`] for two points.
 pub fn clip_polygon(poly: &[ClipVertex], normal: DVec3, offset: f64, plane: usize) -> Vec<ClipVertex> {
     let n = poly.len();
+    let tolerance = SIDE_TOLERANCE * normal.length();
     let mut out = Vec::with_capacity(n + 2);
     let s = (plane & 0x7F) as u16;
     for i in 0..n {
@@ -55,16 +62,16 @@ pub fn clip_polygon(poly: &[ClipVertex], normal: DVec3, offset: f64, plane: usiz
         let b = poly[(i + 1) % n];
         let da = normal.dot(a.point) - offset;
         let db = normal.dot(b.point) - offset;
-        if da <= 0.0 {
+        if da <= tolerance {
             out.push(a);
         }
-        if (da <= 0.0) != (db <= 0.0) {
+        if (da <= tolerance) != (db <= tolerance) {
             let t = da / (da - db);
             let point = a.point + (b.point - a.point) * t;
             let tag = 0x8000 | (u16::from(a.line) << 7) | s;
             // Leaving the half-space, the next polygon edge runs along the side plane; entering,
             // it continues along the incident edge.
-            let line = if da <= 0.0 { 0x80 | s as u8 } else { a.line };
+            let line = if da <= tolerance { 0x80 | s as u8 } else { a.line };
             out.push(ClipVertex { point, tag, line });
         }
     }
@@ -78,13 +85,14 @@ pub fn clip_segment(
     offset: f64,
     plane: usize,
 ) -> Option<[ClipVertex; 2]> {
+    let tolerance = SIDE_TOLERANCE * normal.length();
     let da = normal.dot(seg[0].point) - offset;
     let db = normal.dot(seg[1].point) - offset;
-    if da > 0.0 && db > 0.0 {
+    if da > tolerance && db > tolerance {
         return None;
     }
     let mut out = seg;
-    if da > 0.0 || db > 0.0 {
+    if da > tolerance || db > tolerance {
         let t = da / (da - db);
         let point = seg[0].point + (seg[1].point - seg[0].point) * t;
         let cut = ClipVertex {
@@ -92,7 +100,7 @@ pub fn clip_segment(
             tag: 0x8000 | (u16::from(seg[0].line) << 7) | (plane & 0x7F) as u16,
             line: seg[0].line,
         };
-        if da > 0.0 {
+        if da > tolerance {
             out[0] = cut;
         } else {
             out[1] = cut;
@@ -122,7 +130,7 @@ pub fn clip_to_face(
         poly = match poly.len() {
             0 => break,
             1 => {
-                if side.dot(poly[0].point) <= offset {
+                if side.dot(poly[0].point) <= offset + SIDE_TOLERANCE * side.length() {
                     poly
                 } else {
                     Vec::new()

@@ -1,44 +1,68 @@
-//! Contact constraints in the soft step: per manifold point a non-penetration row and two friction
-//! rows, plus per manifold a torsional row (spin about the normal) and two rolling rows.
+//! Contact constraints in the soft step: per manifold point a non-penetration row, per manifold
+//! Coulomb friction at its centre, plus a torsional row (spin about the normal) and two rolling
+//! rows for the materials that ask for them.
 //!
 //! - **Normal**: `Ċ = n·(v_b + ω_b×r_b − v_a − ω_a×r_a)`, `λ ≥ 0`. The separation now is the
 //!   separation the narrow phase measured, advanced by the bodies' motion since the step began
 //!   (`s = s₀ + n·(Δp_b + r_b − Δp_a − r_a) − n·(r_b⁰ − r_a⁰)`). Where `s > 0` the row is
 //!   *speculative*: it only removes the approach speed that would close the gap within the substep
 //!   (`bias = s/h`), so fast bodies stop at the surface instead of tunnelling. Where `s ≤ 0` the
-//!   row is soft (contact hertz, damping ratio), with the push-out speed capped.
-//! - **Friction**: Coulomb's cone. The two tangent rows are solved together and the tangent
-//!   impulse vector is clamped to the disc `|λ_t| ≤ μ λ_n` (a cone, not a pyramid, so friction has
-//!   no preferred directions).
+//!   row is soft (contact hertz, damping ratio), with the push-out speed capped. A manifold's
+//!   normal rows are solved together as one small LCP (contact_block.rs), so a symmetric load
+//!   gives symmetric impulses whatever the order of the points.
+//! - **Steady load**: a soft row is a spring, and a spring carrying a load `L` is compressed by
+//!   `L/k` — summed up a stack of ten boxes that is 2.6 cm. Each manifold learns the load it
+//!   carries at rest (a low-pass of its impulse, time constant `steady_load_time`) and the spring
+//!   gives way only to the impulse above it: a slow integral term on the spring–damper, which
+//!   holds resting loads at zero penetration while impacts still meet the soft spring.
+//! - **Friction**: Coulomb's cone for the whole manifold at its centre (contact_friction.rs).
 //! - **Rolling and torsional friction**: angular rows on the relative angular velocity, clamped by
 //!   `μ_roll·Σλ_n` and `μ_torsion·Σλ_n` (coefficients in metres: lever arms of the resistance).
 //! - **Restitution**: after the substeps, points whose approach speed when their row engaged
-//!   exceeded the threshold get the normal impulse that makes `v_n = −e·v_n⁰` (the speed at
-//!   engagement, not at the start of the step: gravity speeds a falling body up in between).
+//!   exceeded the threshold get the normal impulses (solved together) that make
+//!   `v_n = −e·v_n⁰` (the speed at engagement, not at the start of the step: gravity speeds a
+//!   falling body up in between).
 //! - **Anchors**: on corners, edges and faces the contact point is a material point that turns
 //!   with the body; on round surfaces (spheres, capsules) it keeps its step-start offset, so a
-//!   rolling ball's contact stays under it.
+//!   rolling ball's contact stays under it. Impulses act at one world point shared by both bodies
+//!   (`shared_levers`), so collisions keep the total angular momentum.
 //!
 //! Accumulated impulses are kept per point (matched by feature id across steps) and applied again
 //! at every substep's warm start.
 
 use crate::collision::ProxyKey;
+use crate::dynamics::contact_block::{NormalBlock, MAX_POINTS};
+use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::{DMat3, DVec3};
 
+/// Separation, m, up to which a row stays soft rather than speculative. A resting contact that
+/// carries its load without sagging (the steady load, `solve_normals`) sits at zero separation;
+/// switching there between the rigid speculative row and the soft one on round-off would make the
+/// row's stiffness jump from substep to substep. Within this band the soft row lets the surfaces
+/// close at no more than `bias_rate·s`.
+const SOFT_BAND: f64 = 1e-4;
+
 /// Impulses remembered for one manifold point between steps (for warm starting).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactImpulse {
     /// Accumulated normal impulse per substep, N·s.
     pub normal: f64,
-    /// Accumulated friction impulse per substep, world frame (kept as a vector so a slightly
-    /// turned normal does not scramble it).
+    /// This point's share of the manifold's accumulated friction impulse per substep, world
+    /// frame (kept as a vector so a slightly turned normal does not scramble it).
     pub tangent_world: DVec3,
+    /// This point's share of the manifold's accumulated twist-friction impulse per substep.
+    #[serde(default)]
+    pub twist: f64,
     /// The largest normal impulse applied during the last step (for restitution and events).
     pub max_normal: f64,
+    /// The steady part of the normal impulse per substep (a low-pass of `normal`): the load the
+    /// point carries at rest, which the soft row holds without compressing (see `solve`).
+    #[serde(default)]
+    pub steady_normal: f64,
 }
 
 /// The friction and restitution of a contact, after combining the two shapes' materials.
@@ -71,12 +95,9 @@ struct PointConstraint {
     /// Separation measured by the narrow phase at the start of the step.
     base_separation: f64,
     normal_mass: f64,
-    /// Inverse of the 2×2 tangent effective mass, embedded in 3×3 over the tangent plane.
-    tangent_mass: DMat3,
-    /// Isotropic tangent effective mass, `2 / trace(K_t)`: steers sliding friction (see `solve`).
-    sliding_mass: f64,
     normal_impulse: f64,
-    tangent_impulse: DVec3,
+    /// Low-pass of `normal_impulse` over substeps: the steady load (see `ContactConstraint::solve`).
+    steady_normal_impulse: f64,
     max_normal_impulse: f64,
     /// Normal velocity at the start of the step (negative = approaching).
     relative_velocity: f64,
@@ -115,13 +136,37 @@ impl PointConstraint {
         r_b_local: DVec3::ZERO,
         base_separation: 0.0,
         normal_mass: 0.0,
-        tangent_mass: DMat3::ZERO,
-        sliding_mass: 0.0,
         normal_impulse: 0.0,
-        tangent_impulse: DVec3::ZERO,
+        steady_normal_impulse: 0.0,
         max_normal_impulse: 0.0,
         relative_velocity: 0.0,
     };
+}
+
+/// The lever arms at which a contact's impulse acts: one shared world point for both bodies.
+///
+/// The two anchors (`r_a`, `r_b`, material or round, see `PointConstraint::anchors`) start on one
+/// normal line, but once the bodies move within the step they drift apart sideways; equal and
+/// opposite impulses at two different points then exert a net moment `(P_b − P_a) × p`, and a
+/// collision in free space would change the total angular momentum (by 3–6% in a glancing hit).
+/// Acting at one point `M` on the segment between them conserves it exactly. `M` is weighted
+/// towards the lighter body's anchor (`t = m_b⁻¹/(m_a⁻¹ + m_b⁻¹)`; at its own anchor when the other is fixed), so
+/// a body against the ground is pushed exactly where it was before.
+#[inline]
+pub(crate) fn shared_levers(
+    (r_a, r_b): (DVec3, DVec3),
+    com_offset: DVec3,
+    a: &SolverBody,
+    b: &SolverBody,
+) -> (DVec3, DVec3) {
+    let total = a.inv_mass + b.inv_mass;
+    if a.inv_mass == 0.0 || b.inv_mass == 0.0 || total == 0.0 {
+        return (r_a, r_b);
+    }
+    // P_b − P_a, with the centres of mass where they are now.
+    let d = com_offset + b.dp + r_b - a.dp - r_a;
+    let t = b.inv_mass / total;
+    (r_a + t * d, r_b - (1.0 - t) * d)
 }
 
 /// A manifold prepared for the solver.
@@ -135,9 +180,16 @@ pub(crate) struct ContactConstraint {
     pub body_a: usize,
     pub body_b: usize,
     normal: DVec3,
+    /// `c_b − c_a` at the step start: places the two anchors relative to each other.
+    com_offset: DVec3,
     material: ContactMaterial,
     points: [PointConstraint; 4],
     point_count: usize,
+    /// `K = J M⁻¹ Jᵀ` of the normal rows, from the step-start anchors: row `i` against row `j`
+    /// through the two bodies (contact_block.rs).
+    normal_coupling: [[f64; MAX_POINTS]; MAX_POINTS],
+    /// Coulomb friction at the manifold's centre (contact_friction.rs).
+    friction: PatchFriction,
     /// Angular effective mass of the pair, `(I_a⁻¹ + I_b⁻¹)⁻¹`, for rolling and torsion.
     angular_mass: DMat3,
     rolling_impulse: DVec3,
@@ -167,14 +219,16 @@ impl ContactConstraint {
             body_a,
             body_b,
             normal,
+            com_offset: com_b - com_a,
             material,
             points: [PointConstraint::EMPTY; 4],
             point_count: points.len().min(4),
+            normal_coupling: [[0.0; MAX_POINTS]; MAX_POINTS],
+            friction: PatchFriction::EMPTY,
             angular_mass: invert_or_zero(a.inv_inertia + b.inv_inertia),
             rolling_impulse: DVec3::ZERO,
             torsional_impulse: 0.0,
         };
-        let tangent_projector = DMat3::IDENTITY - outer(normal, normal);
         for (pc, input) in constraint.points.iter_mut().zip(points) {
             // The narrow phase's point is midway between the surfaces. A round body is pushed at
             // its own surface point, on the line through its centre (a speculative point can lie
@@ -187,9 +241,6 @@ impl ContactConstraint {
             let k = crate::dynamics::joint::parts::point_mass_matrix(a, r_a)
                 + crate::dynamics::joint::parts::point_mass_matrix(b, r_b);
             let kn = normal.dot(k * normal);
-            // The tangent block of K, inverted on the tangent plane (the normal direction gets a
-            // unit entry so the 3×3 is invertible, then is projected away).
-            let kt = tangent_projector * k * tangent_projector + outer(normal, normal);
             let relative_velocity = normal.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
             let normal_mass = if kn > 0.0 { 1.0 / kn } else { 0.0 };
             let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
@@ -201,24 +252,33 @@ impl ContactConstraint {
                 r_b_local: b.q.inverse() * r_b,
                 base_separation: input.separation,
                 normal_mass,
-                tangent_mass: tangent_projector * invert_or_zero(kt) * tangent_projector,
-                sliding_mass: {
-                    let trace_t = k.x_axis.x + k.y_axis.y + k.z_axis.z - kn;
-                    if trace_t > 0.0 {
-                        2.0 / trace_t
-                    } else {
-                        0.0
-                    }
-                },
                 normal_impulse: if ctx.warm_starting { input.impulse.normal } else { 0.0 },
-                tangent_impulse: if ctx.warm_starting {
-                    tangent_projector * input.impulse.tangent_world
-                } else {
-                    DVec3::ZERO
-                },
+                steady_normal_impulse: if ctx.warm_starting { input.impulse.steady_normal } else { 0.0 },
                 max_normal_impulse: 0.0,
                 relative_velocity,
             };
+        }
+        let count = constraint.point_count;
+        let mut offsets = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+        for (offset, pc) in offsets.iter_mut().zip(&constraint.points[..count]) {
+            *offset = (pc.r_a0, pc.r_b0);
+        }
+        let (tangent, twist) = if ctx.warm_starting {
+            points
+                .iter()
+                .fold((DVec3::ZERO, 0.0), |(t, w), p| (t + p.impulse.tangent_world, w + p.impulse.twist))
+        } else {
+            (DVec3::ZERO, 0.0)
+        };
+        constraint.friction = PatchFriction::prepare(a, b, &offsets[..count], normal, tangent, twist);
+        let arms = |pc: &PointConstraint| (pc.r_a0.cross(normal), pc.r_b0.cross(normal));
+        for i in 0..count {
+            let (ai, bi) = arms(&constraint.points[i]);
+            for j in 0..count {
+                let (aj, bj) = arms(&constraint.points[j]);
+                constraint.normal_coupling[i][j] =
+                    a.inv_mass + b.inv_mass + ai.dot(a.inv_inertia * aj) + bi.dot(b.inv_inertia * bj);
+            }
         }
         constraint
     }
@@ -231,9 +291,10 @@ impl ContactConstraint {
     pub fn warm_start(&self, a: &mut SolverBody, b: &mut SolverBody) {
         let round = self.round;
         for pc in &self.points[..self.point_count] {
-            let (r_a, r_b) = pc.anchors(round, a, b);
-            Self::apply(a, b, r_a, r_b, pc.normal_impulse * self.normal + pc.tangent_impulse);
+            let (r_a, r_b) = shared_levers(pc.anchors(round, a, b), self.com_offset, a, b);
+            Self::apply(a, b, r_a, r_b, pc.normal_impulse * self.normal);
         }
+        self.friction.warm_start(round, self.normal, self.com_offset, a, b);
         let angular = self.rolling_impulse + self.torsional_impulse * self.normal;
         a.w -= a.inv_inertia * angular;
         b.w += b.inv_inertia * angular;
@@ -243,62 +304,21 @@ impl ContactConstraint {
     pub fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext, use_bias: bool) {
         let round = self.round;
         let n = self.normal;
-        let mut total_normal = 0.0;
-        for pc in &mut self.points[..self.point_count] {
-            let (r_a, r_b) = pc.anchors(round, a, b);
-            let s = pc.separation((r_a, r_b), a, b, n);
-            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-                // Speculative: allow closing the gap, no more.
-                (s * ctx.inv_h, 1.0, 0.0)
-            } else if use_bias {
-                let soft = pc.softness;
-                (
-                    (soft.bias_rate * s).max(-ctx.max_contact_push_velocity),
-                    soft.mass_scale,
-                    soft.impulse_scale,
-                )
-            } else {
-                (0.0, 1.0, 0.0)
-            };
-            let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
-            if vn + bias < 0.0 {
-                // The approach speed at impact (for restitution) is the fastest seen when the row
-                // engages, before its impulse acts: gravity keeps speeding a falling body up after
-                // the step began, and a speculative row engages before the surfaces touch.
-                pc.relative_velocity = pc.relative_velocity.min(vn);
-            }
-            let impulse = -pc.normal_mass * mass_scale * (vn + bias) - impulse_scale * pc.normal_impulse;
-            let new_impulse = (pc.normal_impulse + impulse).max(0.0);
-            let applied = new_impulse - pc.normal_impulse;
-            pc.normal_impulse = new_impulse;
-            pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
-            total_normal += new_impulse;
-            Self::apply(a, b, r_a, r_b, applied * n);
-        }
+        let total_normal = self.solve_normals(a, b, ctx, use_bias);
 
-        // Friction: the tangent impulse vector stays inside the disc of radius μ·λ_n. Sticking
-        // is solved with the full 2×2 tangent mass. Sliding friction must oppose the slip, but the
-        // 2×2 mass turns the impulse away from it (by ~20° at a box corner, which cut the
-        // friction of a sliding box by 6%); so a point that slides is updated with the isotropic
-        // mass, whose fixed point on the rim is anti-parallel to the slip velocity.
-        let mu = self.material.friction;
-        for pc in &mut self.points[..self.point_count] {
-            let (r_a, r_b) = pc.anchors(round, a, b);
-            let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
-            let vt = dv - n.dot(dv) * n;
-            let old = pc.tangent_impulse;
-            let mut new = old - pc.tangent_mass * vt;
-            let max = mu * pc.normal_impulse;
-            if new.length() > max {
-                new = old - pc.sliding_mass * vt;
-                let len = new.length();
-                if len > max {
-                    new *= max / len;
-                }
-            }
-            pc.tangent_impulse = new;
-            Self::apply(a, b, r_a, r_b, new - old);
+        let mut normal_impulses = [0.0; MAX_POINTS];
+        for (l, pc) in normal_impulses.iter_mut().zip(&self.points[..self.point_count]) {
+            *l = pc.normal_impulse;
         }
+        self.friction.solve(
+            round,
+            n,
+            self.com_offset,
+            self.material.friction,
+            &normal_impulses[..self.point_count],
+            a,
+            b,
+        );
 
         // Torsional and rolling friction, bounded by the manifold's total normal impulse.
         if self.material.torsional_friction > 0.0 {
@@ -328,6 +348,92 @@ impl ContactConstraint {
         }
     }
 
+    /// The normal rows of the manifold, solved together (contact_block.rs; one by one if the block
+    /// cannot be factored). Returns the manifold's total normal impulse.
+    fn solve_normals(
+        &mut self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        ctx: &StepContext,
+        use_bias: bool,
+    ) -> f64 {
+        let round = self.round;
+        let n = self.normal;
+        let count = self.point_count;
+        // The load the manifold carries at rest, shared evenly: the soft rows give way only to the
+        // impulse above it (see the module docs). Shared evenly, not per point, so the load
+        // memory cannot hold the load shifts of a body rocking between its supports.
+        let steady =
+            self.points[..count].iter().map(|pc| pc.steady_normal_impulse).sum::<f64>() / count.max(1) as f64;
+        let mut block = NormalBlock { count, ..Default::default() };
+        let mut accumulated = [0.0; MAX_POINTS];
+        let mut anchors = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+        for (i, pc) in self.points[..count].iter_mut().enumerate() {
+            let material = pc.anchors(round, a, b);
+            let s = pc.separation(material, a, b, n);
+            let (r_a, r_b) = shared_levers(material, self.com_offset, a, b);
+            anchors[i] = (r_a, r_b);
+            let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
+                // Speculative: allow closing the gap, no more.
+                (s * ctx.inv_h, 1.0, 0.0)
+            } else if use_bias {
+                let soft = pc.softness;
+                (
+                    (soft.bias_rate * s).max(-ctx.max_contact_push_velocity),
+                    soft.mass_scale,
+                    soft.impulse_scale,
+                )
+            } else {
+                (0.0, 1.0, 0.0)
+            };
+            let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
+            if vn + bias < 0.0 {
+                // The approach speed at impact (for restitution) is the fastest seen when the row
+                // engages, before its impulse acts: gravity keeps speeding a falling body up after
+                // the step began, and a speculative row engages before the surfaces touch.
+                pc.relative_velocity = pc.relative_velocity.min(vn);
+            }
+            // The soft row's compliance `γ = k·impulse_scale/mass_scale` (contact_block.rs). It
+            // leaks the accumulated impulse: that is the spring's give, and under a steady load L
+            // it settles compressed by L/k. Leaking only the part above the steady load lets the
+            // spring carry L at zero compression while shocks still meet the soft spring (a slow
+            // integral term on top of the spring–damper).
+            let k_ii = self.normal_coupling[i][i];
+            let gamma = if mass_scale > 0.0 { k_ii * impulse_scale / mass_scale } else { 0.0 };
+            block.rhs[i] = -(vn + bias) - gamma * (pc.normal_impulse - steady);
+            block.matrix[i] = self.normal_coupling[i];
+            block.matrix[i][i] += gamma;
+            accumulated[i] = pc.normal_impulse;
+        }
+        let deltas = block.solve(&accumulated).unwrap_or_else(|| {
+            // One by one, each row against its own effective mass.
+            let mut deltas = [0.0; MAX_POINTS];
+            for i in 0..count {
+                let k = block.matrix[i][i];
+                deltas[i] = if k > 0.0 { (block.rhs[i] / k).max(-accumulated[i]) } else { 0.0 };
+            }
+            deltas
+        });
+        let mut total_normal = 0.0;
+        for (i, pc) in self.points[..count].iter_mut().enumerate() {
+            let applied = deltas[i];
+            pc.normal_impulse = (pc.normal_impulse + applied).max(0.0);
+            pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
+            total_normal += pc.normal_impulse;
+            let (r_a, r_b) = anchors[i];
+            Self::apply(a, b, r_a, r_b, applied * n);
+        }
+        total_normal
+    }
+
+    /// End of a substep: the steady load learns from this substep's normal impulse, with a time
+    /// constant of `ctx.steady_load_time` (`rate = h / time`).
+    pub fn update_steady_load(&mut self, rate: f64) {
+        for pc in &mut self.points[..self.point_count] {
+            pc.steady_normal_impulse += rate * (pc.normal_impulse - pc.steady_normal_impulse);
+        }
+    }
+
     /// Stage "restitution": after the substeps, make points that approached faster than the
     /// threshold separate at `e` times their approach speed.
     pub fn apply_restitution(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext) {
@@ -337,17 +443,38 @@ impl ContactConstraint {
             return;
         }
         let n = self.normal;
-        for pc in &mut self.points[..self.point_count] {
+        // The bouncing points, solved together (contact_block.rs) so that a face or edge hitting
+        // with several points gets the impulses that give each its target speed at once; one
+        // after the other, each point's impulse disturbs the others' and energy is not kept.
+        let mut rows = [0usize; MAX_POINTS];
+        let mut block = NormalBlock::default();
+        let mut accumulated = [0.0; MAX_POINTS];
+        let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+        for (i, pc) in self.points[..self.point_count].iter().enumerate() {
             if pc.relative_velocity > -ctx.restitution_threshold || pc.max_normal_impulse == 0.0 {
                 continue;
             }
-            let (r_a, r_b) = pc.anchors(round, a, b);
+            let (r_a, r_b) = shared_levers(pc.anchors(round, a, b), self.com_offset, a, b);
             let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
-            let impulse = -pc.normal_mass * (vn + e * pc.relative_velocity);
-            let new_impulse = (pc.normal_impulse + impulse).max(0.0);
-            let applied = new_impulse - pc.normal_impulse;
-            pc.normal_impulse = new_impulse;
+            let row = block.count;
+            rows[row] = i;
+            levers[row] = (r_a, r_b);
+            block.rhs[row] = -(vn + e * pc.relative_velocity);
+            accumulated[row] = pc.normal_impulse;
+            block.count += 1;
+        }
+        for row in 0..block.count {
+            for col in 0..block.count {
+                block.matrix[row][col] = self.normal_coupling[rows[row]][rows[col]];
+            }
+        }
+        let Some(deltas) = block.solve(&accumulated) else { return };
+        for row in 0..block.count {
+            let pc = &mut self.points[rows[row]];
+            let applied = deltas[row];
+            pc.normal_impulse = (pc.normal_impulse + applied).max(0.0);
             pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
+            let (r_a, r_b) = levers[row];
             Self::apply(a, b, r_a, r_b, applied * n);
         }
     }
@@ -356,12 +483,10 @@ impl ContactConstraint {
     pub fn impulses(&self) -> impl Iterator<Item = ContactImpulse> + '_ {
         self.points[..self.point_count].iter().map(|pc| ContactImpulse {
             normal: pc.normal_impulse,
-            tangent_world: pc.tangent_impulse,
+            tangent_world: self.friction.tangent_impulse / self.point_count as f64,
+            twist: self.friction.twist_impulse / self.point_count as f64,
             max_normal: pc.max_normal_impulse,
+            steady_normal: pc.steady_normal_impulse,
         })
     }
-}
-
-fn outer(u: DVec3, v: DVec3) -> DMat3 {
-    DMat3::from_cols(u * v.x, u * v.y, u * v.z)
 }

@@ -4,6 +4,8 @@
 //! See `docs/solver.md` for the derivation of the soft constraints and the stage order.
 
 pub mod contact;
+pub(crate) mod contact_block;
+pub(crate) mod contact_friction;
 pub(crate) mod contact_solver;
 pub(crate) mod island;
 pub mod joint;

@@ -27,14 +27,17 @@ use crate::world::World;
 /// Solver settings. The defaults suit 60 Hz steps of everyday objects.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SolverSettings {
-    /// Substeps per step. Default 4. More substeps allow stiffer joints (`joint_hertz` is capped
+    /// Substeps per step. Default 8. More substeps allow stiffer joints (`joint_hertz` is capped
     /// at a quarter of the substep rate).
     pub substeps: u32,
     /// Stiffness of joint position correction, Hz (capped at a quarter of the substep rate).
+    /// Default 60.
     pub joint_hertz: f64,
     /// Damping ratio of joint position correction.
     pub joint_damping_ratio: f64,
-    /// Stiffness of contact position correction, Hz (capped at a quarter of the substep rate).
+    /// Stiffness of contact position correction, Hz (capped at a quarter of the substep rate;
+    /// doubled against static bodies). Default 60: an eighth of the substep rate, stiff enough
+    /// and well enough resolved that a pyramid of 210 boxes settles within 1.1 mm.
     pub contact_hertz: f64,
     /// Damping ratio of contact position correction.
     pub contact_damping_ratio: f64,
@@ -50,21 +53,28 @@ pub struct SolverSettings {
     pub solve_iterations: u32,
     /// Relax sweeps per substep (0 allowed). Default 1.
     pub relax_iterations: u32,
+    /// Time constant, s, over which a contact learns the steady load it carries, so that it holds
+    /// that load without sagging (0 = plain soft contacts, which sag by load/stiffness: 2.6 cm
+    /// over a stack of ten boxes at 4 substeps). Joints do not use it: their loads turn with the
+    /// bodies, and a learned load that lags a swinging pendulum pulls it apart. Default 0.1 s.
+    #[serde(default)]
+    pub steady_load_time: f64,
 }
 
 impl Default for SolverSettings {
     fn default() -> Self {
         Self {
-            substeps: 4,
+            substeps: 8,
             joint_hertz: 60.0,
             joint_damping_ratio: 2.0,
-            contact_hertz: 30.0,
+            contact_hertz: 60.0,
             contact_damping_ratio: 10.0,
             max_contact_push_velocity: 3.0,
             restitution_threshold: 1.0,
             warm_starting: true,
             solve_iterations: 1,
             relax_iterations: 1,
+            steady_load_time: 0.1,
         }
     }
 }
@@ -88,6 +98,8 @@ pub(crate) struct StepContext {
     pub warm_starting: bool,
     pub solve_iterations: u32,
     pub relax_iterations: u32,
+    /// Per-substep learning rate of the steady loads, `h / steady_load_time` (0 = off).
+    pub steady_load_rate: f64,
 }
 
 impl StepContext {
@@ -117,6 +129,11 @@ impl StepContext {
             warm_starting: settings.warm_starting,
             solve_iterations: settings.solve_iterations.max(1),
             relax_iterations: settings.relax_iterations,
+            steady_load_rate: if settings.steady_load_time > 0.0 {
+                (h / settings.steady_load_time).min(1.0)
+            } else {
+                0.0
+            },
         }
     }
 }
@@ -239,6 +256,11 @@ impl World {
                 for c in contacts.iter_mut() {
                     let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
                     c.solve(a, b, &ctx, false);
+                }
+            }
+            if ctx.steady_load_rate > 0.0 {
+                for c in contacts.iter_mut() {
+                    c.update_steady_load(ctx.steady_load_rate);
                 }
             }
         }

@@ -1,0 +1,197 @@
+//! The normal rows of one manifold solved together, as one small mixed LCP (Box2D v2's two-point
+//! block solver, grown to four points).
+//!
+//! Solving a manifold's points one after the other favours the first: on a box resting on its
+//! face, the first corner takes more of the load than the last, the box is tipped by the
+//! difference, and in a stack the tips add up and walk the tower sideways. Solved together, a
+//! symmetric load gives symmetric impulses.
+//!
+//! Each soft row `i` has the update (softness.rs) `Δλᵢ = −(sᵢ/kᵢᵢ)(vᵢ + bᵢ) − cᵢ λ'ᵢ` with
+//! `sᵢ` the mass scale, `cᵢ` the impulse scale and `λ'ᵢ` the part of the accumulated impulse the
+//! spring gives way to. Multiplying by `kᵢᵢ/sᵢ`, with `γᵢ = kᵢᵢ cᵢ/sᵢ`:
+//!
+//! `(kᵢᵢ + γᵢ) Δλᵢ = −(vᵢ + bᵢ) − γᵢ λ'ᵢ`,
+//!
+//! which is the one-row case of the block system `(K + Γ) Δλ = −(v + b) − Γ λ'`, where
+//! `K = J M⁻¹ Jᵀ` couples the rows through the two bodies and `Γ = diag(γ)` is each row's
+//! compliance. Rigid rows (speculative, relax) have `γ = 0`; four coplanar points of a face make
+//! `K` singular (a body has only three ways to move against a plane), so a tiny regularisation
+//! picks the least-norm split, which is the symmetric one.
+//!
+//! The accumulated impulses must stay non-negative: rows whose impulse would turn negative are
+//! released (set to zero) and the rest solved again, until none does.
+
+/// At most four points per manifold.
+pub(crate) const MAX_POINTS: usize = 4;
+
+/// A dense system `(K + Γ) Δλ = rhs` for up to four rows.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NormalBlock {
+    /// `K + Γ`, symmetric.
+    pub matrix: [[f64; MAX_POINTS]; MAX_POINTS],
+    pub rhs: [f64; MAX_POINTS],
+    pub count: usize,
+}
+
+impl NormalBlock {
+    /// The impulse increments that keep `accumulated + Δλ ≥ 0` (rows that would pull are
+    /// released), or `None` when the system cannot be factored (the caller then solves the rows
+    /// one by one).
+    pub fn solve(&self, accumulated: &[f64; MAX_POINTS]) -> Option<[f64; MAX_POINTS]> {
+        let n = self.count;
+        let mut active = [true; MAX_POINTS];
+        let mut delta = [0.0; MAX_POINTS];
+        // Each pass releases at least one row, so `n + 1` passes always end.
+        for _ in 0..=n {
+            // Released rows end at zero impulse: their increment is fixed at `−accumulated`.
+            let mut m = [[0.0; MAX_POINTS]; MAX_POINTS];
+            let mut b = [0.0; MAX_POINTS];
+            let mut index = [0usize; MAX_POINTS];
+            let mut size = 0;
+            for i in (0..n).filter(|&i| active[i]) {
+                index[size] = i;
+                size += 1;
+            }
+            for (row, &i) in index[..size].iter().enumerate() {
+                b[row] = self.rhs[i];
+                for j in (0..n).filter(|&j| !active[j]) {
+                    b[row] += self.matrix[i][j] * accumulated[j];
+                }
+                for (col, &j) in index[..size].iter().enumerate() {
+                    m[row][col] = self.matrix[i][j];
+                }
+            }
+            let x = solve_spd(&mut m, &mut b, size)?;
+            delta = [0.0; MAX_POINTS];
+            for i in (0..n).filter(|&i| !active[i]) {
+                delta[i] = -accumulated[i];
+            }
+            let mut released = false;
+            for (row, &i) in index[..size].iter().enumerate() {
+                delta[i] = x[row];
+                if accumulated[i] + x[row] < 0.0 {
+                    active[i] = false;
+                    released = true;
+                }
+            }
+            if !released {
+                return Some(delta);
+            }
+        }
+        // Unreachable in exact arithmetic; fall back to clamping what the last pass found.
+        for i in 0..n {
+            delta[i] = delta[i].max(-accumulated[i]);
+        }
+        Some(delta)
+    }
+}
+
+/// Solves the symmetric positive (semi-)definite system `m x = b` of size `n` by Cholesky
+/// factorisation, with a relative regularisation of `1e-9` of the largest diagonal entry so that
+/// the singular systems of coplanar points give their least-norm solution. `None` when the matrix
+/// is not positive (a degenerate manifold).
+fn solve_spd(
+    m: &mut [[f64; MAX_POINTS]; MAX_POINTS],
+    b: &mut [f64; MAX_POINTS],
+    n: usize,
+) -> Option<[f64; MAX_POINTS]> {
+    let mut x = [0.0; MAX_POINTS];
+    if n == 0 {
+        return Some(x);
+    }
+    let scale = (0..n).map(|i| m[i][i]).fold(0.0_f64, f64::max);
+    if !(scale > 0.0) || !scale.is_finite() {
+        return None;
+    }
+    let epsilon = 1e-9 * scale;
+    // In place: the lower triangle becomes L with m = L Lᵀ.
+    for j in 0..n {
+        let mut d = m[j][j] + epsilon;
+        for k in 0..j {
+            d -= m[j][k] * m[j][k];
+        }
+        if !(d > 0.0) {
+            return None;
+        }
+        let l_jj = d.sqrt();
+        m[j][j] = l_jj;
+        for i in j + 1..n {
+            let mut s = m[i][j];
+            for k in 0..j {
+                s -= m[i][k] * m[j][k];
+            }
+            m[i][j] = s / l_jj;
+        }
+    }
+    // L y = b, then Lᵀ x = y.
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= m[i][k] * b[k];
+        }
+        b[i] = s / m[i][i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= m[k][i] * x[k];
+        }
+        x[i] = s / m[i][i];
+    }
+    Some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn block(matrix: &[&[f64]], rhs: &[f64]) -> NormalBlock {
+        let mut b = NormalBlock { count: rhs.len(), ..Default::default() };
+        for (i, row) in matrix.iter().enumerate() {
+            b.rhs[i] = rhs[i];
+            for (j, v) in row.iter().enumerate() {
+                b.matrix[i][j] = *v;
+            }
+        }
+        b
+    }
+
+    /// An unconstrained SPD system is solved exactly.
+    #[test]
+    fn solves_a_positive_system() {
+        let b = block(&[&[4.0, 1.0, 0.5], &[1.0, 3.0, 0.2], &[0.5, 0.2, 2.0]], &[1.0, 2.0, 3.0]);
+        let x = b.solve(&[10.0; 4]).unwrap();
+        for i in 0..3 {
+            let r: f64 = (0..3).map(|j| b.matrix[i][j] * x[j]).sum::<f64>() - b.rhs[i];
+            assert!(r.abs() < 1e-8, "residual {r}");
+        }
+    }
+
+    /// Four coplanar points under a box centred on them: the singular K has many solutions; the
+    /// block picks the equal split.
+    #[test]
+    fn coplanar_points_share_the_load_equally() {
+        // Unit mass, unit inertia about x and y, points at (±1, ±1): k_ij = 1 + x_i x_j + y_i y_j.
+        let p = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)];
+        let mut b = NormalBlock { count: 4, ..Default::default() };
+        for i in 0..4 {
+            b.rhs[i] = 1.0;
+            for j in 0..4 {
+                b.matrix[i][j] = 1.0 + p[i].0 * p[j].0 + p[i].1 * p[j].1;
+            }
+        }
+        let x = b.solve(&[0.0; 4]).unwrap();
+        for v in &x[..4] {
+            assert!((v - 0.25).abs() < 1e-6, "{x:?}");
+        }
+    }
+
+    /// A row that would pull is released and the others carry the load.
+    #[test]
+    fn pulling_rows_are_released() {
+        let b = block(&[&[2.0, 1.0], &[1.0, 2.0]], &[3.0, -3.0]);
+        let x = b.solve(&[0.0; 4]).unwrap();
+        assert_eq!(x[1], 0.0);
+        assert!((x[0] - 1.5).abs() < 1e-8, "{x:?}");
+    }
+}

@@ -1,0 +1,174 @@
+//! Coulomb friction of a whole manifold, applied at its centre ("patch friction", as in PhysX).
+//!
+//! A face resting on a face has up to four points, and friction rows solved point after point
+//! favour the first: the tangent impulses come out unequal, their moments about the normal do not
+//! cancel, and the body turns a little at every substep (a pyramid of boxes walked sideways by
+//! centimetres). One friction anchor at the centre `c` of the points does not depend on their
+//! order:
+//!
+//! - two tangent rows at `c`, solved together: `Ċ_t = P_t (v_b + ω_b × r_b − v_a − ω_a × r_a)`
+//!   with `P_t = 1 − n nᵀ`, the impulse vector clamped to the disc `|λ_t| ≤ μ Σλ_n` (Coulomb's
+//!   cone for the patch's total load);
+//! - one twist row about the normal: `Ċ_τ = n·(ω_b − ω_a)`, clamped to `|λ_τ| ≤ μ Σ λ_nᵢ dᵢ`,
+//!   the largest moment the points' friction can exert, `dᵢ` being each point's distance from `c`
+//!   in the tangent plane.
+//!
+//! A single point (a ball, a tipped box's corner) is the same as per-point friction.
+
+use crate::dynamics::contact_block::MAX_POINTS;
+use crate::dynamics::contact_solver::shared_levers;
+use crate::dynamics::joint::parts::{apply_point_impulse, invert_or_zero, point_mass_matrix};
+use crate::dynamics::solver_body::SolverBody;
+use crate::math::{DMat3, DVec3};
+
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
+pub(crate) struct PatchFriction {
+    /// The centre's offsets from the centres of mass at the step start, world frame.
+    r_a0: DVec3,
+    r_b0: DVec3,
+    /// The centre as material points of each body.
+    r_a_local: DVec3,
+    r_b_local: DVec3,
+    /// Inverse of the 2×2 tangent effective mass at the centre, embedded in 3×3 over the plane.
+    tangent_mass: DMat3,
+    /// Isotropic tangent effective mass, `2 / trace(K_t)`: steers sliding friction (see `solve`).
+    sliding_mass: f64,
+    /// Effective mass of the twist row, `1 / n·(I_a⁻¹ + I_b⁻¹)·n`.
+    twist_mass: f64,
+    /// Each point's distance from the centre in the tangent plane (the twist row's lever arms).
+    twist_arms: [f64; MAX_POINTS],
+    /// Accumulated friction impulse per substep, on body b, world frame.
+    pub tangent_impulse: DVec3,
+    /// Accumulated twist impulse about the normal, on body b.
+    pub twist_impulse: f64,
+}
+
+impl PatchFriction {
+    pub const EMPTY: PatchFriction = PatchFriction {
+        r_a0: DVec3::ZERO,
+        r_b0: DVec3::ZERO,
+        r_a_local: DVec3::ZERO,
+        r_b_local: DVec3::ZERO,
+        tangent_mass: DMat3::ZERO,
+        sliding_mass: 0.0,
+        twist_mass: 0.0,
+        twist_arms: [0.0; MAX_POINTS],
+        tangent_impulse: DVec3::ZERO,
+        twist_impulse: 0.0,
+    };
+
+    /// Stage "prepare": the centre of the points (offsets `arms` from each centre of mass at the
+    /// step start) and the warm-start impulses.
+    pub fn prepare(
+        a: &SolverBody,
+        b: &SolverBody,
+        arms: &[(DVec3, DVec3)],
+        normal: DVec3,
+        tangent_impulse: DVec3,
+        twist_impulse: f64,
+    ) -> PatchFriction {
+        let count = arms.len().max(1) as f64;
+        let r_a = arms.iter().map(|r| r.0).sum::<DVec3>() / count;
+        let r_b = arms.iter().map(|r| r.1).sum::<DVec3>() / count;
+        let projector = DMat3::IDENTITY - outer(normal, normal);
+        let k = point_mass_matrix(a, r_a) + point_mass_matrix(b, r_b);
+        let kn = normal.dot(k * normal);
+        // The tangent block of K, inverted on the tangent plane (the normal direction gets a unit
+        // entry so the 3×3 is invertible, then is projected away).
+        let kt = projector * k * projector + outer(normal, normal);
+        let trace_t = k.x_axis.x + k.y_axis.y + k.z_axis.z - kn;
+        let k_twist = normal.dot((a.inv_inertia + b.inv_inertia) * normal);
+        let mut twist_arms = [0.0; MAX_POINTS];
+        for (arm, r) in twist_arms.iter_mut().zip(arms) {
+            *arm = (projector * (r.1 - r_b)).length();
+        }
+        PatchFriction {
+            r_a0: r_a,
+            r_b0: r_b,
+            r_a_local: a.q.inverse() * r_a,
+            r_b_local: b.q.inverse() * r_b,
+            tangent_mass: projector * invert_or_zero(kt) * projector,
+            sliding_mass: if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 },
+            twist_mass: if k_twist > 0.0 { 1.0 / k_twist } else { 0.0 },
+            twist_arms,
+            tangent_impulse: projector * tangent_impulse,
+            twist_impulse,
+        }
+    }
+
+    /// The centre's offsets now: material points, or the step-start offsets on a round surface
+    /// (see `PointConstraint::anchors`).
+    #[inline]
+    fn anchors(&self, round: (bool, bool), a: &SolverBody, b: &SolverBody) -> (DVec3, DVec3) {
+        let r_a = if round.0 { self.r_a0 } else { a.q * self.r_a_local };
+        let r_b = if round.1 { self.r_b0 } else { b.q * self.r_b_local };
+        (r_a, r_b)
+    }
+
+    /// Stage "warm start".
+    pub fn warm_start(
+        &self,
+        round: (bool, bool),
+        normal: DVec3,
+        com_offset: DVec3,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
+        let (r_a, r_b) = shared_levers(self.anchors(round, a, b), com_offset, a, b);
+        apply_point_impulse(a, b, r_a, r_b, self.tangent_impulse);
+        let twist = self.twist_impulse * normal;
+        a.w -= a.inv_inertia * twist;
+        b.w += b.inv_inertia * twist;
+    }
+
+    /// Stage "solve"/"relax" (friction has no position error, so both are the same): the
+    /// tangent rows bounded by `μ Σλ_n`, the twist row by `μ Σ λ_nᵢ dᵢ`.
+    pub fn solve(
+        &mut self,
+        round: (bool, bool),
+        normal: DVec3,
+        com_offset: DVec3,
+        friction: f64,
+        normal_impulses: &[f64],
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
+        let total: f64 = normal_impulses.iter().sum();
+        let twist_limit: f64 =
+            friction * normal_impulses.iter().zip(&self.twist_arms).map(|(l, d)| l * d).sum::<f64>();
+        if twist_limit > 0.0 {
+            let w_rel = normal.dot(b.w - a.w);
+            let old = self.twist_impulse;
+            self.twist_impulse = (old - self.twist_mass * w_rel).clamp(-twist_limit, twist_limit);
+            let twist = (self.twist_impulse - old) * normal;
+            a.w -= a.inv_inertia * twist;
+            b.w += b.inv_inertia * twist;
+        } else {
+            self.twist_impulse = 0.0;
+        }
+
+        // Sticking is solved with the full 2×2 tangent mass. Sliding friction must oppose the
+        // slip, but the 2×2 mass turns the impulse away from it (by ~20° at a box corner, which
+        // cut the friction of a sliding box by 6%); so a sliding patch is updated with the
+        // isotropic mass, whose fixed point on the rim is anti-parallel to the slip velocity.
+        let (r_a, r_b) = shared_levers(self.anchors(round, a, b), com_offset, a, b);
+        let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
+        let vt = dv - normal.dot(dv) * normal;
+        let old = self.tangent_impulse;
+        let mut new = old - self.tangent_mass * vt;
+        let max = friction * total;
+        if new.length() > max {
+            new = old - self.sliding_mass * vt;
+            let len = new.length();
+            if len > max {
+                new *= max / len;
+            }
+        }
+        self.tangent_impulse = new;
+        apply_point_impulse(a, b, r_a, r_b, new - old);
+    }
+}
+
+fn outer(u: DVec3, v: DVec3) -> DMat3 {
+    DMat3::from_cols(u * v.x, u * v.y, u * v.z)
+}
