@@ -181,24 +181,3 @@ fn measure_ragdoll_across_settings() {
         );
     }
 }
-
-#[test]
-#[ignore = "diagnosis"]
-fn diagnose_ragdoll_wakefulness() {
-    let mut world = world(Default::default());
-    ground(&mut world, material(0.6, 0.0));
-    let (bodies, _) = ragdoll(&mut world, 0.5, 0.3);
-    for _ in 0..600 {
-        world.step(DT).unwrap();
-    }
-    for &b in &bodies {
-        let body = world.body(b).unwrap();
-        println!(
-            "{:>16}: z {:.3} |v| {:.3e} |w| {:.3e}",
-            body.name(),
-            body.position().z,
-            body.linear_velocity().length(),
-            body.angular_velocity().length()
-        );
-    }
-}
