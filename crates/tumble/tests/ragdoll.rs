@@ -96,13 +96,13 @@ fn ragdoll(world: &mut World, lift: f64, tilt: f64) -> (Vec<BodyId>, Vec<JointId
 /// J6: a ragdoll of 11 bodies dropped from 0.5 m, tipping over as it falls, stays connected (every
 /// joint's anchors within 1 cm at every step), comes to rest and falls asleep within 10 s.
 ///
-/// Fails at the defaults: the largest separation is 10.3 mm (at the impact; 0.5 mm at rest), and
-/// the ragdoll never sleeps. Lying on the ground, its head (a sphere on a ball joint) rolls round
+/// Fails at the defaults: the joints hold (largest separation 9.6 mm, at the impact; 0.5 mm at
+/// rest), but the ragdoll never sleeps. Lying on the ground, its head (a sphere on a ball joint) rolls round
 /// its neck pivot without slipping at ~0.05 rad/s, which nothing resists when rolling resistance is
 /// zero; giving the bodies rolling or torsional friction instead sets a shin rocking at ~1 rad/s.
 /// Three relax sweeps calm everything but the head.
 #[test]
-#[ignore = "fails: 10.3 mm separation at impact (bound 10 mm) and never sleeps; see the doc comment"]
+#[ignore = "fails: never sleeps (the head rolls round its neck pivot); see the doc comment"]
 fn j6_ragdoll_falls_connected_and_sleeps() {
     let mut world = world(Default::default());
     ground(&mut world, material(0.6, 0.0));

@@ -91,6 +91,7 @@ impl Checker<'_> {
             ("contact_damping_ratio", &w.contact_damping_ratio, &mut solver.contact_damping_ratio),
             ("joint_hertz", &w.joint_hertz, &mut solver.joint_hertz),
             ("joint_damping_ratio", &w.joint_damping_ratio, &mut solver.joint_damping_ratio),
+            ("steady_load_time", &w.steady_load_time, &mut solver.steady_load_time),
         ] {
             *target = self.number_or(at, key, value, *target, non_negative, ">= 0")?;
         }

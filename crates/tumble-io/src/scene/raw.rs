@@ -39,6 +39,7 @@ pub(super) struct RawWorld {
     pub contact_damping_ratio: Option<Number>,
     pub joint_hertz: Option<Number>,
     pub joint_damping_ratio: Option<Number>,
+    pub steady_load_time: Option<Number>,
     pub sleep: Option<bool>,
 }
 

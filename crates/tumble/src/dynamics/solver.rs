@@ -31,7 +31,7 @@ pub struct SolverSettings {
     /// at a quarter of the substep rate).
     pub substeps: u32,
     /// Stiffness of joint position correction, Hz (capped at a quarter of the substep rate).
-    /// Default 60.
+    /// Default 120, the cap at 8 substeps and dt = 1/60 (`ωh = π/2`).
     pub joint_hertz: f64,
     /// Damping ratio of joint position correction.
     pub joint_damping_ratio: f64,
@@ -65,7 +65,7 @@ impl Default for SolverSettings {
     fn default() -> Self {
         Self {
             substeps: 8,
-            joint_hertz: 60.0,
+            joint_hertz: 120.0,
             joint_damping_ratio: 2.0,
             contact_hertz: 60.0,
             contact_damping_ratio: 10.0,
