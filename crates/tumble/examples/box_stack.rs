@@ -1,7 +1,7 @@
 //! A vertical stack of unit boxes on a static ground: prints, once a second, the top box's height,
 //! the largest tilt, contacts and awake bodies, then each box's drift from its start. Settings come
 //! from the environment so the solver can be explored without recompiling:
-//! `N` (boxes, 10), `SUBSTEPS` (4), `CONTACT_HERTZ` (30), `FRICTION` (0.6), `SECONDS` (10).
+//! `N` (boxes, 10), `SUBSTEPS` (8), `CONTACT_HERTZ` (60), `STEADY_LOAD_TIME` (0.1), `FRICTION` (0.6), `SECONDS` (10).
 //!
 //! Run: `cargo run --release -p tumble --example box_stack`.
 
@@ -13,8 +13,9 @@ fn setting(key: &str, default: f64) -> f64 {
 
 fn main() {
     let solver = SolverSettings {
-        substeps: setting("SUBSTEPS", 4.0) as u32,
-        contact_hertz: setting("CONTACT_HERTZ", 30.0),
+        substeps: setting("SUBSTEPS", 8.0) as u32,
+        contact_hertz: setting("CONTACT_HERTZ", 60.0),
+        steady_load_time: setting("STEADY_LOAD_TIME", 0.1),
         solve_iterations: setting("SOLVE_ITERATIONS", 1.0) as u32,
         relax_iterations: setting("RELAX_ITERATIONS", 1.0) as u32,
         ..Default::default()

@@ -39,6 +39,12 @@ impl NormalBlock {
     /// one by one).
     pub fn solve(&self, accumulated: &[f64; MAX_POINTS]) -> Option<[f64; MAX_POINTS]> {
         let n = self.count;
+        if n == 1 {
+            // One row: the scalar soft update, clamped.
+            let k = self.matrix[0][0];
+            let delta = if k > 0.0 { (self.rhs[0] / k).max(-accumulated[0]) } else { return None };
+            return Some([delta, 0.0, 0.0, 0.0]);
+        }
         let mut active = [true; MAX_POINTS];
         let mut delta = [0.0; MAX_POINTS];
         // Each pass releases at least one row, so `n + 1` passes always end.
