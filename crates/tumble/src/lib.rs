@@ -14,6 +14,7 @@ pub mod integrate;
 pub mod mass;
 pub mod math;
 pub mod query;
+pub mod scenes;
 pub mod shape;
 pub mod snapshot;
 mod state_hash;
