@@ -13,6 +13,7 @@ pub mod id;
 pub mod integrate;
 pub mod mass;
 pub mod math;
+pub mod profile;
 pub mod query;
 pub mod scenes;
 pub mod shape;

@@ -51,12 +51,22 @@ pub(crate) fn unpack(data: u64) -> (usize, u32) {
     ((data >> 32) as usize, data as u32)
 }
 
+/// Contacts handed to one task of the threaded narrow phase. Fixed, so the split follows the
+/// scene (its contact order), never the thread count.
+const NARROW_PHASE_CHUNK: usize = 32;
+
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactManager {
     pub broad_phase: BroadPhase,
     pub contacts: BTreeMap<(ProxyKey, ProxyKey), Contact>,
     /// Begin/end transitions of contacts and sensor overlaps (`events.rs`).
     pub events: EventRecorder,
+    /// The broad phase's new pairs, refilled each step (kept to reuse the allocation).
+    #[serde(skip)]
+    new_pairs: Vec<(ProxyKey, ProxyKey)>,
+    /// Each kept contact's event state before its manifold update, in contact order.
+    #[serde(skip)]
+    states_before: Vec<bool>,
 }
 
 impl ContactManager {
@@ -119,7 +129,9 @@ impl ContactManager {
 
     /// Creates contacts for new candidate pairs that may collide.
     pub fn find_new_contacts(&mut self, bodies: &SlotPool<Body>, joined: impl Fn(BodyId, BodyId) -> bool) {
-        for (key_a, key_b) in self.broad_phase.find_new_pairs() {
+        let mut new_pairs = std::mem::take(&mut self.new_pairs);
+        self.broad_phase.find_new_pairs_into(&mut new_pairs);
+        for &(key_a, key_b) in &new_pairs {
             if self.contacts.contains_key(&(key_a, key_b)) {
                 continue;
             }
@@ -156,42 +168,72 @@ impl ContactManager {
                 },
             );
         }
+        self.new_pairs = new_pairs;
     }
 
     /// Updates every contact: drops those whose fat boxes parted, recomputes the manifolds of the
-    /// rest (where a body is awake). `dt` sizes the speculative margin.
-    pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64) {
-        let (broad_phase, events) = (&self.broad_phase, &mut self.events);
+    /// rest (where a body is awake). `dt` sizes the speculative margin. With a `pool`, the
+    /// manifolds are computed in chunks of [`NARROW_PHASE_CHUNK`] contacts on its threads: each
+    /// contact's update reads only the two bodies and writes only the contact, so the result is
+    /// the same bits in any split; events are recorded afterwards in contact order.
+    pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64, pool: Option<&rayon::ThreadPool>) {
+        let (broad_phase, events, before) = (&self.broad_phase, &mut self.events, &mut self.states_before);
+        before.clear();
         self.contacts.retain(|_, contact| {
             let overlap: bool =
                 broad_phase.fat_aabb(contact.proxy_a).overlaps(&broad_phase.fat_aabb(contact.proxy_b));
             let bodies_of = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into()));
-            let (true, (Some(a), Some(b))) = (overlap, bodies_of) else {
+            let (true, (Some(_), Some(_))) = (overlap, bodies_of) else {
                 events.record_removed(contact);
                 return false;
             };
-            if !a.is_awake() && !b.is_awake() {
-                return true;
-            }
-            let before = EventRecorder::state(contact);
-            update_manifold(contact, a, b, dt);
-            events.record(contact, before);
+            before.push(EventRecorder::state(contact));
             true
         });
+        let update = |contact: &mut Contact| {
+            let (Some(a), Some(b)) = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into()))
+            else {
+                return;
+            };
+            if a.is_awake() || b.is_awake() {
+                update_manifold(contact, a, b, dt);
+            }
+        };
+        match pool {
+            Some(pool) => {
+                use rayon::prelude::*;
+                let mut contacts: Vec<&mut Contact> = self.contacts.values_mut().collect();
+                pool.install(|| {
+                    contacts.par_chunks_mut(NARROW_PHASE_CHUNK).for_each(|chunk| {
+                        for contact in chunk.iter_mut() {
+                            update(contact);
+                        }
+                    })
+                });
+            }
+            None => self.contacts.values_mut().for_each(update),
+        }
+        for (contact, &before) in self.contacts.values().zip(&self.states_before) {
+            self.events.record(contact, before);
+        }
         self.events.finish(&self.contacts);
     }
 
-    /// Body-slot pairs of touching, non-sensor contacts between two dynamic bodies (island links).
-    pub fn touching_links(&self, bodies: &SlotPool<Body>) -> Vec<(u32, u32)> {
-        self.contacts
-            .values()
-            .filter(|c| c.touching && !c.sensor)
-            .filter(|c| {
-                let dynamic = |id: BodyId| bodies.get(id.into()).is_some_and(|b| b.kind == BodyKind::Dynamic);
-                dynamic(c.body_a) && dynamic(c.body_b)
-            })
-            .map(|c| (c.body_a.index() as u32, c.body_b.index() as u32))
-            .collect()
+    /// Body-slot pairs of touching, non-sensor contacts between two dynamic bodies (island links),
+    /// into `links` (cleared first).
+    pub fn touching_links(&self, bodies: &SlotPool<Body>, links: &mut Vec<(u32, u32)>) {
+        links.clear();
+        links.extend(
+            self.contacts
+                .values()
+                .filter(|c| c.touching && !c.sensor)
+                .filter(|c| {
+                    let dynamic =
+                        |id: BodyId| bodies.get(id.into()).is_some_and(|b| b.kind == BodyKind::Dynamic);
+                    dynamic(c.body_a) && dynamic(c.body_b)
+                })
+                .map(|c| (c.body_a.index() as u32, c.body_b.index() as u32)),
+        );
     }
 }
 
