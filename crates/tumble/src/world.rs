@@ -173,6 +173,15 @@ impl World {
         Ok(())
     }
 
+    pub fn sleep_settings(&self) -> &SleepSettings {
+        &self.sleep_settings
+    }
+
+    /// Changes when bodies fall asleep (bodies asleep now stay asleep until woken).
+    pub fn set_sleep_settings(&mut self, settings: SleepSettings) {
+        self.sleep_settings = settings;
+    }
+
     /// The number of threads the collision pipeline uses (1: the calling thread only).
     pub fn threads(&self) -> usize {
         self.pool.as_ref().map_or(1, |p| p.current_num_threads())
