@@ -19,6 +19,7 @@ mod export;
 mod mass;
 mod plot;
 mod run;
+mod scene_export;
 mod source;
 mod view;
 
@@ -96,6 +97,10 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+        /// Write the scene (bodies, shapes, joints, settings) as JSON to FILE and exit, for the
+        /// peer engines in bench/ to build the same scene.
+        #[arg(long, value_name = "FILE.json")]
+        export: Option<PathBuf>,
     },
     /// Print the mass properties of a closed mesh (OBJ or STL) as JSON.
     Mass {
@@ -181,7 +186,15 @@ fn main() -> ExitCode {
                 run::run_scene_file(&scene, out, every, duration, dt, profile, threads)
             }
         }
-        Some(Command::Bench { scene, threads, steps, runs, size, json }) => {
+        Some(Command::Bench { scene, threads, steps, runs, size, json, export: Some(path) }) => {
+            let _ = (threads, steps, runs, json);
+            bench::build_scene(&scene, size).and_then(|s| scene_export::export(&s)).and_then(|text| {
+                std::fs::write(&path, text)
+                    .map(|()| format!("wrote {}\n", path.display()))
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))
+            })
+        }
+        Some(Command::Bench { scene, threads, steps, runs, size, json, export: None }) => {
             bench::bench(&scene, &bench::BenchOptions { threads, steps, runs, size, json })
         }
         Some(Command::Mass { mesh, density }) => mass::print_mass(&mesh, density),
