@@ -205,7 +205,7 @@ mod tests {
         let f = triangle_feature(&TRI, -DVec3::Y);
         assert_eq!((f.code, f.points.len()), (EDGE, 2));
         let f = triangle_feature(&TRI, DVec3::new(1.0, -0.5, 0.2).normalize());
-        assert_eq!((f.code, f.points), (VERTEX | 1, vec![DVec3::X]));
+        assert_eq!((f.code, f.points.to_vec()), (VERTEX | 1, vec![DVec3::X]));
     }
 
     #[test]
