@@ -64,7 +64,8 @@ pub(crate) struct ContactManager {
     /// The broad phase's new pairs, refilled each step (kept to reuse the allocation).
     #[serde(skip)]
     new_pairs: Vec<(ProxyKey, ProxyKey)>,
-    /// Each kept contact's event state before its manifold update, in contact order.
+    /// Each kept contact's event state before its manifold update, in contact order (threaded
+    /// narrow phase only).
     #[serde(skip)]
     states_before: Vec<bool>,
 }
@@ -177,41 +178,56 @@ impl ContactManager {
     /// contact's update reads only the two bodies and writes only the contact, so the result is
     /// the same bits in any split; events are recorded afterwards in contact order.
     pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64, pool: Option<&rayon::ThreadPool>) {
-        let (broad_phase, events, before) = (&self.broad_phase, &mut self.events, &mut self.states_before);
+        let (broad_phase, events) = (&self.broad_phase, &mut self.events);
+        // A contact is kept while its fat boxes overlap and both bodies exist.
+        let kept = |contact: &Contact| -> Option<(&Body, &Body)> {
+            let overlap =
+                broad_phase.fat_aabb(contact.proxy_a).overlaps(&broad_phase.fat_aabb(contact.proxy_b));
+            let a = bodies.get(contact.body_a.into())?;
+            let b = bodies.get(contact.body_b.into())?;
+            overlap.then_some((a, b))
+        };
+        let Some(pool) = pool else {
+            // On one thread: drop, update and record in a single walk over the contacts.
+            self.contacts.retain(|_, contact| {
+                let Some((a, b)) = kept(contact) else {
+                    events.record_removed(contact);
+                    return false;
+                };
+                if a.is_awake() || b.is_awake() {
+                    let before = EventRecorder::state(contact);
+                    update_manifold(contact, a, b, dt);
+                    events.record(contact, before);
+                }
+                true
+            });
+            self.events.finish(&self.contacts);
+            return;
+        };
+        let before = &mut self.states_before;
         before.clear();
         self.contacts.retain(|_, contact| {
-            let overlap: bool =
-                broad_phase.fat_aabb(contact.proxy_a).overlaps(&broad_phase.fat_aabb(contact.proxy_b));
-            let bodies_of = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into()));
-            let (true, (Some(_), Some(_))) = (overlap, bodies_of) else {
+            if kept(contact).is_none() {
                 events.record_removed(contact);
                 return false;
-            };
+            }
             before.push(EventRecorder::state(contact));
             true
         });
-        let update = |contact: &mut Contact| {
-            let (Some(a), Some(b)) = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into()))
-            else {
-                return;
-            };
-            if a.is_awake() || b.is_awake() {
-                update_manifold(contact, a, b, dt);
-            }
-        };
-        match pool {
-            Some(pool) => {
-                use rayon::prelude::*;
-                let mut contacts: Vec<&mut Contact> = self.contacts.values_mut().collect();
-                pool.install(|| {
-                    contacts.par_chunks_mut(NARROW_PHASE_CHUNK).for_each(|chunk| {
-                        for contact in chunk.iter_mut() {
-                            update(contact);
+        {
+            use rayon::prelude::*;
+            let mut contacts: Vec<&mut Contact> = self.contacts.values_mut().collect();
+            pool.install(|| {
+                contacts.par_chunks_mut(NARROW_PHASE_CHUNK).for_each(|chunk| {
+                    for contact in chunk.iter_mut() {
+                        let a = bodies.get(contact.body_a.into()).expect("kept above");
+                        let b = bodies.get(contact.body_b.into()).expect("kept above");
+                        if a.is_awake() || b.is_awake() {
+                            update_manifold(contact, a, b, dt);
                         }
-                    })
-                });
-            }
-            None => self.contacts.values_mut().for_each(update),
+                    }
+                })
+            });
         }
         for (contact, &before) in self.contacts.values().zip(&self.states_before) {
             self.events.record(contact, before);
