@@ -20,7 +20,7 @@ impl World {
 
         // Broad phase: move proxies, find new pairs; narrow phase: update manifolds
         // (collision/contact_manager.rs).
-        self.contact_manager.update_proxies(&self.bodies, dt);
+        self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
         self.profile.lap(Phase::Proxies, &mut clock);
         let joints = &self.joints;
         let joined = |a: BodyId, b: BodyId| {
@@ -44,7 +44,7 @@ impl World {
 
         // Move the proxies of the bodies that moved, so queries between steps see the current
         // poses (query.rs); the next step's broad phase then finds them already in place.
-        self.contact_manager.update_proxies(&self.bodies, dt);
+        self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
         self.profile.lap(Phase::Finalize, &mut clock);
 
         // Islands and sleep (dynamics/island.rs), over the links found before the solve.

@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 
 use super::aabb::shape_aabb;
-use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind};
+use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};
 use super::narrow_phase::{collide, PairCache};
 use crate::body::{Body, BodyKind};
 use crate::dynamics::contact::Contact;
@@ -54,6 +54,8 @@ pub(crate) fn unpack(data: u64) -> (usize, u32) {
 /// Contacts handed to one task of the threaded narrow phase. Fixed, so the split follows the
 /// scene (its contact order), never the thread count.
 const NARROW_PHASE_CHUNK: usize = 32;
+/// Bodies handed to one task when the proxies' boxes are computed on threads.
+const PROXY_CHUNK: usize = 64;
 
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactManager {
@@ -68,6 +70,9 @@ pub(crate) struct ContactManager {
     /// narrow phase only).
     #[serde(skip)]
     states_before: Vec<bool>,
+    /// The proxies' new boxes (threaded proxy update only).
+    #[serde(skip)]
+    proxy_moves: Vec<ProxyUpdate>,
 }
 
 impl ContactManager {
@@ -105,26 +110,41 @@ impl ContactManager {
     }
 
     /// Moves the proxies of awake, non-static bodies to their current poses; the fat boxes are
-    /// stretched by the distance the body will travel in the next step.
-    pub fn update_proxies(&mut self, bodies: &SlotPool<Body>, dt: f64) {
-        for (_, body) in bodies.iter() {
-            if body.kind == BodyKind::Static || !body.is_awake() {
-                continue;
+    /// stretched by the distance the body will travel in the next step. With a `pool`, the boxes
+    /// are computed on its threads in fixed chunks of bodies and the tree is then updated in body
+    /// order, as on one thread.
+    pub fn update_proxies(&mut self, bodies: &SlotPool<Body>, dt: f64, pool: Option<&rayon::ThreadPool>) {
+        let moving = |body: &&Body| body.kind != BodyKind::Static && body.is_awake();
+        let Some(pool) = pool else {
+            for (_, body) in bodies.iter() {
+                if moving(&body) {
+                    self.move_body_proxies(body, dt);
+                }
             }
-            self.move_body_proxies(body, dt);
+            return;
+        };
+        use rayon::prelude::*;
+        let movers: Vec<&Body> = bodies.iter().map(|(_, b)| b).filter(moving).collect();
+        let mut moves = std::mem::take(&mut self.proxy_moves);
+        moves.clear();
+        pool.install(|| {
+            moves.par_extend(
+                movers
+                    .par_chunks(PROXY_CHUNK)
+                    .flat_map_iter(|chunk| chunk.iter().flat_map(|b| proxy_updates(b, dt))),
+            )
+        });
+        for m in &moves {
+            self.broad_phase.move_proxy(m.key, m.aabb, m.displacement);
         }
+        self.proxy_moves = moves;
     }
 
     /// Moves one body's proxies to its current pose (any kind: a static body moved by the user
     /// too), fat boxes stretched by its velocity times `dt`.
     pub fn move_body_proxies(&mut self, body: &Body, dt: f64) {
-        let Some(shape) = &body.shape else { return };
-        let pose = body.transform();
-        let displacement = body.state.linear_velocity * dt;
-        for (child, &key) in body.proxies.iter().enumerate() {
-            let (leaf_shape, local) = leaf(shape, child as u32);
-            let aabb = shape_aabb(leaf_shape, &pose.mul_transform(&local));
-            self.broad_phase.move_proxy(key, aabb, displacement);
+        for m in proxy_updates(body, dt) {
+            self.broad_phase.move_proxy(m.key, m.aabb, m.displacement);
         }
     }
 
@@ -251,6 +271,18 @@ impl ContactManager {
                 .map(|c| (c.body_a.index() as u32, c.body_b.index() as u32)),
         );
     }
+}
+
+/// A body's proxies with their tight boxes at its current pose and its displacement over `dt`.
+fn proxy_updates(body: &Body, dt: f64) -> impl Iterator<Item = ProxyUpdate> + '_ {
+    let pose = body.transform();
+    let displacement = body.state.linear_velocity * dt;
+    body.shape.iter().flat_map(move |shape| {
+        body.proxies.iter().enumerate().map(move |(child, &key)| {
+            let (leaf_shape, local) = leaf(shape, child as u32);
+            ProxyUpdate { key, aabb: shape_aabb(leaf_shape, &pose.mul_transform(&local)), displacement }
+        })
+    })
 }
 
 fn slot_body(bodies: &SlotPool<Body>, slot: usize) -> Option<(BodyId, &Body)> {
