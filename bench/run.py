@@ -40,10 +40,10 @@ ENGINES = ["tumble", "rapier", "pybullet", "mujoco"]
 # on a 2-core machine, fewer for the big scenes (their quality result is then after these steps).
 TABLE_STEPS = {
     "pyramid": 1000,
-    "large_pyramid": 40,
+    "large_pyramid": 20,
     "rain": 120,
     "chain": 1000,
-    "ragdolls": 300,
+    "ragdolls": 120,
     "convex_pile": 120,
     "tumbling": 200,
 }
@@ -193,7 +193,7 @@ def main():
     parser.add_argument("--runs", type=int, default=5, help="rounds (timed runs per engine)")
     parser.add_argument("--steps", type=int, default=None, help="steps per run for every scene")
     parser.add_argument("--threads", type=int, default=1, help="Tumble's collision threads")
-    parser.add_argument("--timeout", type=float, default=120.0, help="seconds one run may take")
+    parser.add_argument("--timeout", type=float, default=60.0, help="seconds one run may take")
     parser.add_argument("--scaling", action="store_true", help="Tumble's steps/s against body count instead")
     parser.add_argument("--skip-install", action="store_true")
     parser.add_argument("--out", default=None, help="write the report (markdown) here too")

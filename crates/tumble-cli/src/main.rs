@@ -68,7 +68,7 @@ enum Command {
         dt: Option<f64>,
         /// Print the wall time of each step phase (broad phase, narrow phase, solve, ...), summed
         /// over the run. SCENE may also name a built-in benchmark scene (see `tumble bench`),
-        /// which is run for its step count without a recording.
+        /// which is run for its step count (or --duration) without a recording.
         #[arg(long)]
         profile: bool,
         /// Threads for the collision pipeline (results are identical for any count).
@@ -180,7 +180,9 @@ fn main() -> ExitCode {
         Some(Command::Run { scene, out, every, duration, dt, profile, threads }) => {
             let name = scene.to_string_lossy();
             if !scene.exists() && tumble::scenes::NAMES.contains(&name.as_ref()) {
-                let options = bench::BenchOptions { threads, steps: None, runs: 1, size: None, json: false };
+                // A built-in scene runs its own step count, or as many steps as cover --duration.
+                let steps = duration.map(|d| run::step_count(d.max(0.0), tumble::scenes::DT) as u32);
+                let options = bench::BenchOptions { threads, steps, runs: 1, size: None, json: false };
                 bench::profile(&name, &options)
             } else {
                 run::run_scene_file(&scene, out, every, duration, dt, profile, threads)
