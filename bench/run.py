@@ -174,12 +174,14 @@ def table(all_results, engines, steps_of):
                 if "substeps" in last:
                     settings += f"; substeps {last['substeps']}"
                 settings += f"; threads {last.get('threads', 1)}; {len(res['rates'])} runs"
+                if res["error"]:
+                    settings += f" (the next {res['error']})"
                 if last.get("note"):
                     settings += f"; {last['note']}"
                 version = last.get("version", "")
                 lines.append(
                     f"| {scene} | {steps_of(scene)} | {e} {version} | {rate:,.1f} | {ratio} | "
-                    f"{fmt_metrics(last.get('metrics'))} | {settings} |"
+                    f"{last.get('quality') or fmt_metrics(last.get('metrics'))} | {settings} |"
                 )
             else:
                 lines.append(f"| {scene} | {steps_of(scene)} | {e} | — | — | {res['error']} | |")
