@@ -3,7 +3,8 @@
 //! ```text
 //! tumble                      run the built-in demo (same as `tumble demo`)
 //! tumble demo [--out FILE]    T-handle flipping in zero gravity → out/demo.csv
-//! tumble run SCENE [--out FILE.csv] [--every N] [--duration S] [--dt S]
+//! tumble run SCENE [--out FILE.csv] [--every N] [--duration S] [--dt S] [--profile]
+//! tumble bench NAME [--threads N] [--steps N] [--runs N] [--size N] [--json]
 //! tumble mass MESH [--density D]      mass properties of an OBJ/STL as JSON
 //! tumble view SCENE.toml | REC.csv --scene SCENE.toml [-o out.html]   a page that plays it in 3D
 //! tumble export SCENE.toml | REC.csv --scene SCENE.toml [-o out.glb]  glTF 2.0 animation
@@ -12,11 +13,13 @@
 //! Errors go to stderr as `error: …` with exit status 1; the program never ends in a panic
 //! message for bad input.
 
+mod bench;
 mod demo;
 mod export;
 mod mass;
 mod plot;
 mod run;
+mod scene_export;
 mod source;
 mod view;
 
@@ -63,6 +66,41 @@ enum Command {
         /// Time step in seconds, overriding the scene's `world.dt`.
         #[arg(long, value_name = "S", allow_negative_numbers = true)]
         dt: Option<f64>,
+        /// Print the wall time of each step phase (broad phase, narrow phase, solve, ...), summed
+        /// over the run. SCENE may also name a built-in benchmark scene (see `tumble bench`),
+        /// which is run for its step count (or --duration) without a recording.
+        #[arg(long)]
+        profile: bool,
+        /// Threads for the collision pipeline (results are identical for any count).
+        #[arg(long, value_name = "N", default_value_t = 1)]
+        threads: usize,
+    },
+    /// Time a built-in benchmark scene (pyramid, large_pyramid, rain, chain, ragdolls,
+    /// convex_pile, tumbling): steps/s as the median of the runs, the settings, and the scene's
+    /// quality result.
+    Bench {
+        /// The scene's name.
+        scene: String,
+        /// Threads for the collision pipeline (results are identical for any count).
+        #[arg(long, value_name = "N", default_value_t = 1)]
+        threads: usize,
+        /// Steps per run [default: the scene's own count].
+        #[arg(long, value_name = "N")]
+        steps: Option<u32>,
+        /// Runs; steps/s is their median.
+        #[arg(long, value_name = "N", default_value_t = 5)]
+        runs: usize,
+        /// The scene's size: base row of a pyramid, or number of spheres, links, ragdolls, hulls
+        /// or bodies [default: the scene's own].
+        #[arg(long, value_name = "N")]
+        size: Option<usize>,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+        /// Write the scene (bodies, shapes, joints, settings) as JSON to FILE and exit, for the
+        /// peer engines in bench/ to build the same scene.
+        #[arg(long, value_name = "FILE.json")]
+        export: Option<PathBuf>,
     },
     /// Print the mass properties of a closed mesh (OBJ or STL) as JSON.
     Mass {
@@ -139,8 +177,27 @@ fn main() -> ExitCode {
     let result = match cli.command {
         None => demo::run_demo(&PathBuf::from(demo::DEFAULT_OUT)),
         Some(Command::Demo { out }) => demo::run_demo(&out),
-        Some(Command::Run { scene, out, every, duration, dt }) => {
-            run::run_scene_file(&scene, out, every, duration, dt)
+        Some(Command::Run { scene, out, every, duration, dt, profile, threads }) => {
+            let name = scene.to_string_lossy();
+            if !scene.exists() && tumble::scenes::NAMES.contains(&name.as_ref()) {
+                // A built-in scene runs its own step count, or as many steps as cover --duration.
+                let steps = duration.map(|d| run::step_count(d.max(0.0), tumble::scenes::DT) as u32);
+                let options = bench::BenchOptions { threads, steps, runs: 1, size: None, json: false };
+                bench::profile(&name, &options)
+            } else {
+                run::run_scene_file(&scene, out, every, duration, dt, profile, threads)
+            }
+        }
+        Some(Command::Bench { scene, threads, steps, runs, size, json, export: Some(path) }) => {
+            let _ = (threads, steps, runs, json);
+            bench::build_scene(&scene, size).and_then(|s| scene_export::export(&s)).and_then(|text| {
+                std::fs::write(&path, text)
+                    .map(|()| format!("wrote {}\n", path.display()))
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))
+            })
+        }
+        Some(Command::Bench { scene, threads, steps, runs, size, json, export: None }) => {
+            bench::bench(&scene, &bench::BenchOptions { threads, steps, runs, size, json })
         }
         Some(Command::Mass { mesh, density }) => mass::print_mass(&mesh, density),
         Some(Command::View { input, out, fps }) => view::view(&input.source(Some(fps)), out),

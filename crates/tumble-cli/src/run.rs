@@ -22,6 +22,8 @@ pub struct RunOptions {
     pub every: u64,
     pub duration: f64,
     pub dt: f64,
+    /// Threads for the collision pipeline.
+    pub threads: usize,
 }
 
 /// What a run did and how well it conserved what it should.
@@ -49,6 +51,8 @@ pub struct Summary {
     pub out: PathBuf,
     pub frames: u64,
     pub every: u64,
+    /// Wall time per step phase over the run.
+    pub profile: tumble::profile::StepProfile,
 }
 
 impl Summary {
@@ -109,6 +113,8 @@ pub fn run_scene_file(
     every: u64,
     duration: Option<f64>,
     dt: Option<f64>,
+    profile: bool,
+    threads: usize,
 ) -> Result<String, String> {
     let scene = Scene::from_file(path).map_err(|e| e.to_string())?;
     if let Some(dt) = dt.filter(|&dt| !(dt.is_finite() && dt > 0.0)) {
@@ -121,10 +127,19 @@ pub fn run_scene_file(
         let stem = path.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
         PathBuf::from("out").join(format!("{stem}.csv"))
     });
-    let options =
-        RunOptions { out, every, duration: duration.unwrap_or(scene.duration), dt: dt.unwrap_or(scene.dt) };
+    let options = RunOptions {
+        out,
+        every,
+        duration: duration.unwrap_or(scene.duration),
+        dt: dt.unwrap_or(scene.dt),
+        threads,
+    };
     let summary = run_scene(&scene, &options).map_err(|e| e.to_string())?;
-    Ok(summary.render(&path.display().to_string()))
+    let mut text = summary.render(&path.display().to_string());
+    if profile {
+        text.push_str(&format!("\n{}\n", summary.profile));
+    }
+    Ok(text)
 }
 
 /// Number of steps to cover `duration`: rounds when `duration / dt` is an integer up to
@@ -151,6 +166,11 @@ fn gravity_force(world: &World) -> DVec3 {
 pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<Summary, IoError> {
     let mut built = scene.build_world()?;
     let world = &mut built.world;
+    world.set_threads(options.threads).map_err(|e| IoError::AtLine {
+        path: scene.path.clone(),
+        line: 1,
+        message: e.to_string(),
+    })?;
     let steps = step_count(options.duration, options.dt);
     let mut recording = RecordingWriter::create(&options.out, options.every)?;
     recording.write_frame(world)?;
@@ -230,6 +250,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<Summary, IoError
         out: options.out.clone(),
         frames,
         every: options.every,
+        profile: *world.profile(),
     })
 }
 

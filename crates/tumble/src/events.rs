@@ -47,6 +47,18 @@ pub(crate) struct EventRecorder {
     contact_end: Vec<BodyPair>,
     sensor_begin: Vec<BodyPair>,
     sensor_end: Vec<BodyPair>,
+    /// Per-pair sums of the transitions, rebuilt by `finish` (kept to reuse the allocation).
+    #[serde(skip)]
+    net: Vec<NetChange>,
+}
+
+/// A body pair's net change of touching contacts over the step, and how many touch now.
+#[derive(Clone, Copy, Debug)]
+struct NetChange {
+    pair: BodyPair,
+    sensor: bool,
+    delta: i32,
+    on_now: i32,
 }
 
 fn ordered_pair(contact: &Contact) -> BodyPair {
@@ -95,30 +107,34 @@ impl EventRecorder {
             return;
         }
         // Net change per pair, and whether the pair is a sensor pair (a body-level property, so
-        // every contact of a pair agrees).
-        let mut net: BTreeMap<BodyPair, (i32, bool)> = BTreeMap::new();
+        // every contact of a pair agrees); sorted by pair, in a buffer kept between steps.
+        self.transitions.sort_unstable_by_key(|t| t.pair);
+        let net = &mut self.net;
+        net.clear();
         for t in self.transitions.drain(..) {
-            net.entry(t.pair).or_insert((0, t.sensor)).0 += t.delta;
-        }
-        let mut on_now: BTreeMap<BodyPair, i32> = BTreeMap::new();
-        for contact in contacts.values() {
-            let pair = ordered_pair(contact);
-            if net.contains_key(&pair) && Self::state(contact) {
-                *on_now.entry(pair).or_insert(0) += 1;
+            match net.last_mut() {
+                Some(last) if last.pair == t.pair => last.delta += t.delta,
+                _ => net.push(NetChange { pair: t.pair, sensor: t.sensor, delta: t.delta, on_now: 0 }),
             }
         }
-        for (pair, (delta, sensor)) in net {
-            let after = on_now.get(&pair).copied().unwrap_or(0);
-            let before = after - delta;
-            let (begin, end) = if sensor {
+        for contact in contacts.values() {
+            if Self::state(contact) {
+                if let Ok(i) = net.binary_search_by_key(&ordered_pair(contact), |n| n.pair) {
+                    net[i].on_now += 1;
+                }
+            }
+        }
+        for n in net.iter() {
+            let (after, before) = (n.on_now, n.on_now - n.delta);
+            let (begin, end) = if n.sensor {
                 (&mut self.sensor_begin, &mut self.sensor_end)
             } else {
                 (&mut self.contact_begin, &mut self.contact_end)
             };
             if before <= 0 && after > 0 {
-                begin.push(pair);
+                begin.push(n.pair);
             } else if before > 0 && after <= 0 {
-                end.push(pair);
+                end.push(n.pair);
             }
         }
     }

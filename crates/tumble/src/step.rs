@@ -1,11 +1,12 @@
 //! `World::step`: the phases of one time step, in order. This file reads as the table of contents
-//! of the pipeline in DESIGN.md; each phase lives in its own module.
-//!
-//! Today the pipeline is: the soft-step solve (forces, gravity, joints, exact rotation update, in
-//! substeps), then accumulators are cleared. Collision joins as its modules land.
+//! of the pipeline in DESIGN.md; each phase lives in its own module. Each phase's wall time is
+//! added to the world's profile (`profile.rs`).
+
+use std::time::Instant;
 
 use crate::id::BodyId;
 use crate::math::DVec3;
+use crate::profile::Phase;
 use crate::world::{World, WorldError};
 
 impl World {
@@ -14,10 +15,13 @@ impl World {
         if !dt.is_finite() || dt <= 0.0 {
             return Err(WorldError::InvalidTimeStep(dt));
         }
+        let start = Instant::now();
+        let mut clock = start;
 
         // Broad phase: move proxies, find new pairs; narrow phase: update manifolds
         // (collision/contact_manager.rs).
-        self.contact_manager.update_proxies(&self.bodies, dt);
+        self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
+        self.profile.lap(Phase::Proxies, &mut clock);
         let joints = &self.joints;
         let joined = |a: BodyId, b: BodyId| {
             joints.iter().any(|(_, j)| {
@@ -25,21 +29,27 @@ impl World {
             })
         };
         self.contact_manager.find_new_contacts(&self.bodies, joined);
-        self.contact_manager.update_contacts(&self.bodies, dt);
+        self.profile.lap(Phase::BroadPhase, &mut clock);
+        self.contact_manager.update_contacts(&self.bodies, dt, self.pool.as_deref());
+        self.profile.lap(Phase::NarrowPhase, &mut clock);
 
         // Wake sleeping islands that awake bodies touch or are jointed to.
-        let links = self.contact_manager.touching_links(&self.bodies);
-        self.wake_islands_touched_by_awake_bodies(&links);
+        self.contact_manager.touching_links(&self.bodies, &mut self.scratch.contact_links);
+        self.wake_islands_touched_by_awake_bodies();
+        self.profile.lap(Phase::Wake, &mut clock);
 
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
         self.solve(dt);
+        self.profile.lap(Phase::Solve, &mut clock);
 
         // Move the proxies of the bodies that moved, so queries between steps see the current
         // poses (query.rs); the next step's broad phase then finds them already in place.
-        self.contact_manager.update_proxies(&self.bodies, dt);
+        self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
+        self.profile.lap(Phase::Finalize, &mut clock);
 
-        // Islands and sleep (dynamics/island.rs).
-        self.update_sleep(dt, &links);
+        // Islands and sleep (dynamics/island.rs), over the links found before the solve.
+        self.update_sleep(dt);
+        self.profile.lap(Phase::Sleep, &mut clock);
 
         // Forces and torques act for one step only.
         for (_, body) in self.bodies.iter_mut() {
@@ -54,6 +64,8 @@ impl World {
         self.time_compensation = (t - self.time) - y;
         self.time = t;
         self.step_count += 1;
+        self.profile.steps += 1;
+        self.profile.total += start.elapsed();
         Ok(())
     }
 }

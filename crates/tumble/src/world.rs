@@ -57,6 +57,8 @@ pub enum WorldError {
     InvalidJoint { joint: String, message: String },
     #[error("solver settings: {0}")]
     InvalidSolverSettings(String),
+    #[error("{0}")]
+    InvalidSettings(String),
 }
 
 /// A rigid-body world.
@@ -79,6 +81,16 @@ pub struct World {
     /// The low-order bits lost from `time` by the last addition (Kahan summation).
     pub(crate) time_compensation: f64,
     pub(crate) step_count: u64,
+    /// Wall time per phase of `step` (never part of the state: not saved, not hashed).
+    #[serde(skip)]
+    pub(crate) profile: crate::profile::StepProfile,
+    /// The threads the collision pipeline may use; `None` runs it on the calling thread. Not
+    /// saved: a restored world runs on one thread until told otherwise.
+    #[serde(skip)]
+    pub(crate) pool: Option<std::sync::Arc<rayon::ThreadPool>>,
+    /// Buffers the step refills each time, kept to reuse their allocations.
+    #[serde(skip)]
+    pub(crate) scratch: crate::dynamics::island::IslandScratch,
 }
 
 impl Default for World {
@@ -146,6 +158,9 @@ impl World {
             time: 0.0,
             time_compensation: 0.0,
             step_count: 0,
+            profile: Default::default(),
+            pool: None,
+            scratch: Default::default(),
         })
     }
 
@@ -157,6 +172,47 @@ impl World {
         check_solver_settings(&settings)?;
         self.solver_settings = settings;
         Ok(())
+    }
+
+    pub fn sleep_settings(&self) -> &SleepSettings {
+        &self.sleep_settings
+    }
+
+    /// Changes when bodies fall asleep (bodies asleep now stay asleep until woken).
+    pub fn set_sleep_settings(&mut self, settings: SleepSettings) {
+        self.sleep_settings = settings;
+    }
+
+    /// The number of threads the collision pipeline uses (1: the calling thread only).
+    pub fn threads(&self) -> usize {
+        self.pool.as_ref().map_or(1, |p| p.current_num_threads())
+    }
+
+    /// Runs the collision pipeline on `threads` threads of a pool owned by the world (1 or 0: on
+    /// the calling thread, no pool). The work is split by the scene, never by the thread count,
+    /// and merged in a fixed order, so every thread count gives bit-identical results.
+    pub fn set_threads(&mut self, threads: usize) -> Result<(), WorldError> {
+        self.pool = if threads <= 1 {
+            None
+        } else {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .thread_name(|i| format!("tumble-{i}"))
+                .build()
+                .map_err(|e| WorldError::InvalidSettings(format!("cannot start {threads} threads: {e}")))?;
+            Some(std::sync::Arc::new(pool))
+        };
+        Ok(())
+    }
+
+    /// Wall time per step phase, summed since the world was made or [`World::reset_profile`].
+    pub fn profile(&self) -> &crate::profile::StepProfile {
+        &self.profile
+    }
+
+    /// Starts the profile afresh.
+    pub fn reset_profile(&mut self) {
+        self.profile = Default::default();
     }
 
     pub fn gravity(&self) -> DVec3 {

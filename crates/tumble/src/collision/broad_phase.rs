@@ -150,19 +150,27 @@ impl BroadPhase {
     /// key first. Pairs of proxies that both stayed inside their fat boxes are not reported: they
     /// were reported before, and their overlap has not changed.
     pub fn find_new_pairs(&mut self) -> Vec<(ProxyKey, ProxyKey)> {
+        let mut pairs = Vec::new();
+        self.find_new_pairs_into(&mut pairs);
+        pairs
+    }
+
+    /// [`BroadPhase::find_new_pairs`] into a caller's buffer (cleared first), so a caller that
+    /// keeps the buffer allocates nothing once it is large enough.
+    pub fn find_new_pairs_into(&mut self, pairs: &mut Vec<(ProxyKey, ProxyKey)>) {
+        pairs.clear();
         let mut moved = std::mem::take(&mut self.move_buffer);
         moved.sort_unstable();
         moved.dedup();
-        let mut pairs = Vec::new();
         for &key in &moved {
             let tree = &self.trees[key.kind() as usize];
             if !tree.contains_proxy(key.proxy_id()) {
                 continue; // destroyed after it moved
             }
             let fat = tree.fat_aabb(key.proxy_id());
-            self.collect_overlaps(key, &fat, ProxyKind::Dynamic, |other| other != key, &mut pairs);
+            self.collect_overlaps(key, &fat, ProxyKind::Dynamic, |other| other != key, pairs);
             if key.kind() == ProxyKind::Dynamic {
-                self.collect_overlaps(key, &fat, ProxyKind::Static, |_| true, &mut pairs);
+                self.collect_overlaps(key, &fat, ProxyKind::Static, |_| true, pairs);
             }
         }
         // A pair of two moved proxies is found from both ends.
@@ -170,7 +178,6 @@ impl BroadPhase {
         pairs.dedup();
         moved.clear();
         self.move_buffer = moved; // keep the allocation
-        pairs
     }
 
     /// Pushes `(min, max)` of `key` and every proxy of `kind` overlapping `fat` that passes `keep`.

@@ -13,6 +13,8 @@
 //! side plane `s'` → `0x80 | s'`). The same features touching give the same tags, whatever the
 //! exact pose, which is what lets contact points keep their identity from step to step.
 
+use smallvec::SmallVec;
+
 use crate::math::DVec3;
 
 /// Distance, m, by which a vertex may lie outside a side plane and still count as inside. Equal
@@ -20,6 +22,10 @@ use crate::math::DVec3;
 /// it round-off alone would decide, step by step, whether a corner stays or is cut — changing the
 /// points' identities and dropping their warm-start impulses.
 const SIDE_TOLERANCE: f64 = 1e-6;
+
+/// A clipped polygon: on the stack up to 16 vertices (a box face clipped by a box face has at most
+/// eight), so clipping allocates nothing in the usual cases.
+pub type ClipPolygon = SmallVec<[ClipVertex; 16]>;
 
 /// A vertex of a polygon being clipped.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -52,10 +58,10 @@ impl ClipVertex {
 /// Keeps the part of `poly` on the negative side of the plane `normal · x ≤ offset` (the side
 /// plane numbered `plane`). Works for polygons (closed loops of ≥ 3 vertices); see
 /// [`clip_segment`] for two points.
-pub fn clip_polygon(poly: &[ClipVertex], normal: DVec3, offset: f64, plane: usize) -> Vec<ClipVertex> {
+pub fn clip_polygon(poly: &[ClipVertex], normal: DVec3, offset: f64, plane: usize) -> ClipPolygon {
     let n = poly.len();
     let tolerance = SIDE_TOLERANCE * normal.length();
-    let mut out = Vec::with_capacity(n + 2);
+    let mut out = ClipPolygon::new();
     let s = (plane & 0x7F) as u16;
     for i in 0..n {
         let a = poly[i];
@@ -117,8 +123,8 @@ pub fn clip_to_face(
     ref_normal: DVec3,
     incident: &[DVec3],
     max_separation: f64,
-) -> Vec<ClippedPoint> {
-    let mut poly: Vec<ClipVertex> =
+) -> SmallVec<[ClippedPoint; 16]> {
+    let mut poly: ClipPolygon =
         incident.iter().enumerate().map(|(k, &p)| ClipVertex::original(p, k)).collect();
     let m = ref_loop.len();
     for s in 0..m {
@@ -133,10 +139,11 @@ pub fn clip_to_face(
                 if side.dot(poly[0].point) <= offset + SIDE_TOLERANCE * side.length() {
                     poly
                 } else {
-                    Vec::new()
+                    ClipPolygon::new()
                 }
             }
-            2 => clip_segment([poly[0], poly[1]], side, offset, s).map_or(Vec::new(), |seg| seg.to_vec()),
+            2 => clip_segment([poly[0], poly[1]], side, offset, s)
+                .map_or(ClipPolygon::new(), |seg| seg.into_iter().collect()),
             _ => clip_polygon(&poly, side, offset, s),
         };
     }

@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 
 use super::aabb::shape_aabb;
-use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind};
+use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};
 use super::narrow_phase::{collide, PairCache};
 use crate::body::{Body, BodyKind};
 use crate::dynamics::contact::Contact;
@@ -51,12 +51,28 @@ pub(crate) fn unpack(data: u64) -> (usize, u32) {
     ((data >> 32) as usize, data as u32)
 }
 
+/// Contacts handed to one task of the threaded narrow phase. Fixed, so the split follows the
+/// scene (its contact order), never the thread count.
+const NARROW_PHASE_CHUNK: usize = 32;
+/// Bodies handed to one task when the proxies' boxes are computed on threads.
+const PROXY_CHUNK: usize = 64;
+
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactManager {
     pub broad_phase: BroadPhase,
     pub contacts: BTreeMap<(ProxyKey, ProxyKey), Contact>,
     /// Begin/end transitions of contacts and sensor overlaps (`events.rs`).
     pub events: EventRecorder,
+    /// The broad phase's new pairs, refilled each step (kept to reuse the allocation).
+    #[serde(skip)]
+    new_pairs: Vec<(ProxyKey, ProxyKey)>,
+    /// Each kept contact's event state before its manifold update, in contact order (threaded
+    /// narrow phase only).
+    #[serde(skip)]
+    states_before: Vec<bool>,
+    /// The proxies' new boxes (threaded proxy update only).
+    #[serde(skip)]
+    proxy_moves: Vec<ProxyUpdate>,
 }
 
 impl ContactManager {
@@ -94,32 +110,49 @@ impl ContactManager {
     }
 
     /// Moves the proxies of awake, non-static bodies to their current poses; the fat boxes are
-    /// stretched by the distance the body will travel in the next step.
-    pub fn update_proxies(&mut self, bodies: &SlotPool<Body>, dt: f64) {
-        for (_, body) in bodies.iter() {
-            if body.kind == BodyKind::Static || !body.is_awake() {
-                continue;
+    /// stretched by the distance the body will travel in the next step. With a `pool`, the boxes
+    /// are computed on its threads in fixed chunks of bodies and the tree is then updated in body
+    /// order, as on one thread.
+    pub fn update_proxies(&mut self, bodies: &SlotPool<Body>, dt: f64, pool: Option<&rayon::ThreadPool>) {
+        let moving = |body: &&Body| body.kind != BodyKind::Static && body.is_awake();
+        let Some(pool) = pool else {
+            for (_, body) in bodies.iter() {
+                if moving(&body) {
+                    self.move_body_proxies(body, dt);
+                }
             }
-            self.move_body_proxies(body, dt);
+            return;
+        };
+        use rayon::prelude::*;
+        let movers: Vec<&Body> = bodies.iter().map(|(_, b)| b).filter(moving).collect();
+        let mut moves = std::mem::take(&mut self.proxy_moves);
+        moves.clear();
+        pool.install(|| {
+            moves.par_extend(
+                movers
+                    .par_chunks(PROXY_CHUNK)
+                    .flat_map_iter(|chunk| chunk.iter().flat_map(|b| proxy_updates(b, dt))),
+            )
+        });
+        for m in &moves {
+            self.broad_phase.move_proxy(m.key, m.aabb, m.displacement);
         }
+        self.proxy_moves = moves;
     }
 
     /// Moves one body's proxies to its current pose (any kind: a static body moved by the user
     /// too), fat boxes stretched by its velocity times `dt`.
     pub fn move_body_proxies(&mut self, body: &Body, dt: f64) {
-        let Some(shape) = &body.shape else { return };
-        let pose = body.transform();
-        let displacement = body.state.linear_velocity * dt;
-        for (child, &key) in body.proxies.iter().enumerate() {
-            let (leaf_shape, local) = leaf(shape, child as u32);
-            let aabb = shape_aabb(leaf_shape, &pose.mul_transform(&local));
-            self.broad_phase.move_proxy(key, aabb, displacement);
+        for m in proxy_updates(body, dt) {
+            self.broad_phase.move_proxy(m.key, m.aabb, m.displacement);
         }
     }
 
     /// Creates contacts for new candidate pairs that may collide.
     pub fn find_new_contacts(&mut self, bodies: &SlotPool<Body>, joined: impl Fn(BodyId, BodyId) -> bool) {
-        for (key_a, key_b) in self.broad_phase.find_new_pairs() {
+        let mut new_pairs = std::mem::take(&mut self.new_pairs);
+        self.broad_phase.find_new_pairs_into(&mut new_pairs);
+        for &(key_a, key_b) in &new_pairs {
             if self.contacts.contains_key(&(key_a, key_b)) {
                 continue;
             }
@@ -156,43 +189,100 @@ impl ContactManager {
                 },
             );
         }
+        self.new_pairs = new_pairs;
     }
 
     /// Updates every contact: drops those whose fat boxes parted, recomputes the manifolds of the
-    /// rest (where a body is awake). `dt` sizes the speculative margin.
-    pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64) {
+    /// rest (where a body is awake). `dt` sizes the speculative margin. With a `pool`, the
+    /// manifolds are computed in chunks of [`NARROW_PHASE_CHUNK`] contacts on its threads: each
+    /// contact's update reads only the two bodies and writes only the contact, so the result is
+    /// the same bits in any split; events are recorded afterwards in contact order.
+    pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64, pool: Option<&rayon::ThreadPool>) {
         let (broad_phase, events) = (&self.broad_phase, &mut self.events);
-        self.contacts.retain(|_, contact| {
-            let overlap: bool =
+        // A contact is kept while its fat boxes overlap and both bodies exist.
+        let kept = |contact: &Contact| -> Option<(&Body, &Body)> {
+            let overlap =
                 broad_phase.fat_aabb(contact.proxy_a).overlaps(&broad_phase.fat_aabb(contact.proxy_b));
-            let bodies_of = (bodies.get(contact.body_a.into()), bodies.get(contact.body_b.into()));
-            let (true, (Some(a), Some(b))) = (overlap, bodies_of) else {
+            let a = bodies.get(contact.body_a.into())?;
+            let b = bodies.get(contact.body_b.into())?;
+            overlap.then_some((a, b))
+        };
+        let Some(pool) = pool else {
+            // On one thread: drop, update and record in a single walk over the contacts.
+            self.contacts.retain(|_, contact| {
+                let Some((a, b)) = kept(contact) else {
+                    events.record_removed(contact);
+                    return false;
+                };
+                if a.is_awake() || b.is_awake() {
+                    let before = EventRecorder::state(contact);
+                    update_manifold(contact, a, b, dt);
+                    events.record(contact, before);
+                }
+                true
+            });
+            self.events.finish(&self.contacts);
+            return;
+        };
+        let before = &mut self.states_before;
+        before.clear();
+        self.contacts.retain(|_, contact| {
+            if kept(contact).is_none() {
                 events.record_removed(contact);
                 return false;
-            };
-            if !a.is_awake() && !b.is_awake() {
-                return true;
             }
-            let before = EventRecorder::state(contact);
-            update_manifold(contact, a, b, dt);
-            events.record(contact, before);
+            before.push(EventRecorder::state(contact));
             true
         });
+        {
+            use rayon::prelude::*;
+            let mut contacts: Vec<&mut Contact> = self.contacts.values_mut().collect();
+            pool.install(|| {
+                contacts.par_chunks_mut(NARROW_PHASE_CHUNK).for_each(|chunk| {
+                    for contact in chunk.iter_mut() {
+                        let a = bodies.get(contact.body_a.into()).expect("kept above");
+                        let b = bodies.get(contact.body_b.into()).expect("kept above");
+                        if a.is_awake() || b.is_awake() {
+                            update_manifold(contact, a, b, dt);
+                        }
+                    }
+                })
+            });
+        }
+        for (contact, &before) in self.contacts.values().zip(&self.states_before) {
+            self.events.record(contact, before);
+        }
         self.events.finish(&self.contacts);
     }
 
-    /// Body-slot pairs of touching, non-sensor contacts between two dynamic bodies (island links).
-    pub fn touching_links(&self, bodies: &SlotPool<Body>) -> Vec<(u32, u32)> {
-        self.contacts
-            .values()
-            .filter(|c| c.touching && !c.sensor)
-            .filter(|c| {
-                let dynamic = |id: BodyId| bodies.get(id.into()).is_some_and(|b| b.kind == BodyKind::Dynamic);
-                dynamic(c.body_a) && dynamic(c.body_b)
-            })
-            .map(|c| (c.body_a.index() as u32, c.body_b.index() as u32))
-            .collect()
+    /// Body-slot pairs of touching, non-sensor contacts between two dynamic bodies (island links),
+    /// into `links` (cleared first).
+    pub fn touching_links(&self, bodies: &SlotPool<Body>, links: &mut Vec<(u32, u32)>) {
+        links.clear();
+        links.extend(
+            self.contacts
+                .values()
+                .filter(|c| c.touching && !c.sensor)
+                .filter(|c| {
+                    let dynamic =
+                        |id: BodyId| bodies.get(id.into()).is_some_and(|b| b.kind == BodyKind::Dynamic);
+                    dynamic(c.body_a) && dynamic(c.body_b)
+                })
+                .map(|c| (c.body_a.index() as u32, c.body_b.index() as u32)),
+        );
     }
+}
+
+/// A body's proxies with their tight boxes at its current pose and its displacement over `dt`.
+fn proxy_updates(body: &Body, dt: f64) -> impl Iterator<Item = ProxyUpdate> + '_ {
+    let pose = body.transform();
+    let displacement = body.state.linear_velocity * dt;
+    body.shape.iter().flat_map(move |shape| {
+        body.proxies.iter().enumerate().map(move |(child, &key)| {
+            let (leaf_shape, local) = leaf(shape, child as u32);
+            ProxyUpdate { key, aabb: shape_aabb(leaf_shape, &pose.mul_transform(&local)), displacement }
+        })
+    })
 }
 
 fn slot_body(bodies: &SlotPool<Body>, slot: usize) -> Option<(BodyId, &Body)> {

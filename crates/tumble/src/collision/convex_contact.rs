@@ -9,6 +9,8 @@
 //!    face: clip the incident feature to the reference face. Parallel edges: clip one to the
 //!    other's extent. Anything with a vertex: the single GJK/EPA point.
 
+use smallvec::SmallVec;
+
 use super::clip::{clip_segment, clip_to_face, ClipVertex};
 use super::epa::epa;
 use super::feature::{supporting_feature, Feature};
@@ -115,7 +117,7 @@ impl Context<'_> {
         let bits = (u32::from(ref_is_b) << 31)
             | ((u32::from(reference.code) & 0xFF) << 23)
             | ((u32::from(incident.code) & 0x7F) << 16);
-        let candidates: Vec<ContactPoint> = clipped
+        let candidates: SmallVec<[ContactPoint; 16]> = clipped
             .iter()
             .map(|c| {
                 let sep = c.separation - radius;
@@ -149,7 +151,7 @@ impl Context<'_> {
         let radius = self.radius_a + self.radius_b;
         let normal_world = self.pose_a.rotation * normal;
         let bits = 0x4000_0000 | ((u32::from(fa.code) & 0xFF) << 23) | ((u32::from(fb.code) & 0x7F) << 16);
-        let mut candidates = Vec::with_capacity(2);
+        let mut candidates: SmallVec<[ContactPoint; 2]> = SmallVec::new();
         for c in seg {
             let sep = normal.dot(c.point - a0) - radius;
             if sep <= self.margin {

@@ -153,7 +153,7 @@ impl DynamicTree {
         if self.root == NULL {
             return;
         }
-        let mut stack = Vec::with_capacity(64);
+        let mut stack = NodeStack::default();
         stack.push(self.root);
         while let Some(index) = stack.pop() {
             let node = &self.nodes[index as usize];
@@ -478,6 +478,45 @@ impl DynamicTree {
         self.nodes[up as usize].aabb = up_aabb;
         self.nodes[up as usize].height = up_height;
         up
+    }
+}
+
+/// A depth-first traversal stack that lives on the call stack while it fits (it holds at most
+/// the tree's height plus one, and a balanced tree of a million proxies is about 30 high), so a
+/// query allocates nothing; a deeper tree spills to the heap.
+struct NodeStack {
+    inline: [u32; 64],
+    len: usize,
+    spill: Vec<u32>,
+}
+
+impl Default for NodeStack {
+    fn default() -> Self {
+        NodeStack { inline: [0; 64], len: 0, spill: Vec::new() }
+    }
+}
+
+impl NodeStack {
+    #[inline]
+    fn push(&mut self, index: u32) {
+        if self.len < self.inline.len() {
+            self.inline[self.len] = index;
+            self.len += 1;
+        } else {
+            self.spill.push(index);
+        }
+    }
+
+    #[inline]
+    fn pop(&mut self) -> Option<u32> {
+        if let Some(index) = self.spill.pop() {
+            return Some(index);
+        }
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        Some(self.inline[self.len])
     }
 }
 

@@ -10,7 +10,13 @@
 
 use super::polytope::Polytope;
 use super::support::Core;
+use smallvec::{smallvec, SmallVec};
+
 use crate::math::DVec3;
+
+/// A feature's points: on the stack up to 16 (a cylinder cap has 12, a box face 4), so finding
+/// a feature allocates nothing in the usual cases.
+pub type FeaturePoints = SmallVec<[DVec3; 16]>;
 
 /// Faces count as facing `dir` when their normal is within ~2.6° of it.
 pub const FACE_COS_TOLERANCE: f64 = 0.999;
@@ -24,7 +30,7 @@ const CAP_SIDES: usize = 12;
 /// 1 edge, 2 face), index below.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Feature {
-    pub points: Vec<DVec3>,
+    pub points: FeaturePoints,
     pub code: u16,
 }
 
@@ -33,7 +39,7 @@ pub(crate) const EDGE: u16 = 1 << 14;
 pub(crate) const FACE: u16 = 2 << 14;
 
 impl Feature {
-    fn new(points: Vec<DVec3>, kind: u16, index: usize) -> Feature {
+    fn new(points: FeaturePoints, kind: u16, index: usize) -> Feature {
         Feature { points, code: kind | (index as u16 & 0x3FFF) }
     }
 
@@ -50,15 +56,15 @@ impl Feature {
 pub fn supporting_feature(core: &Core, dir_local: DVec3) -> Feature {
     let d = dir_local.normalize_or_zero();
     match *core {
-        Core::Point => Feature::new(vec![DVec3::ZERO], VERTEX, 0),
+        Core::Point => Feature::new(smallvec![DVec3::ZERO], VERTEX, 0),
         Core::Segment { half_height } => {
             let (lo, hi) = (DVec3::new(0.0, 0.0, -half_height), DVec3::new(0.0, 0.0, half_height));
             if d.z.abs() <= EDGE_SIN_TOLERANCE {
-                Feature::new(vec![lo, hi], EDGE, 0)
+                Feature::new(smallvec![lo, hi], EDGE, 0)
             } else if d.z > 0.0 {
-                Feature::new(vec![hi], VERTEX, 1)
+                Feature::new(smallvec![hi], VERTEX, 1)
             } else {
-                Feature::new(vec![lo], VERTEX, 0)
+                Feature::new(smallvec![lo], VERTEX, 0)
             }
         }
         Core::Cuboid { half_extents } => polytope_feature(&Polytope::Cuboid { half_extents }, d),
@@ -69,9 +75,9 @@ pub fn supporting_feature(core: &Core, dir_local: DVec3) -> Feature {
                 Feature::new(cap(radius, half_height, d.z > 0.0), FACE, usize::from(d.z > 0.0))
             } else if d.z.abs() <= EDGE_SIN_TOLERANCE {
                 let u = DVec3::new(d.x, d.y, 0.0).normalize() * radius;
-                Feature::new(vec![u - DVec3::Z * half_height, u + DVec3::Z * half_height], EDGE, 0)
+                Feature::new(smallvec![u - DVec3::Z * half_height, u + DVec3::Z * half_height], EDGE, 0)
             } else {
-                Feature::new(vec![core.support_local(d)], VERTEX, 0)
+                Feature::new(smallvec![core.support_local(d)], VERTEX, 0)
             }
         }
         Core::Cone { radius, half_height } => {
@@ -84,9 +90,9 @@ pub fn supporting_feature(core: &Core, dir_local: DVec3) -> Feature {
                 Feature::new(cap(radius, half_height, false), FACE, 0)
             } else if slant_cos >= 1.0 - 0.5 * EDGE_SIN_TOLERANCE * EDGE_SIN_TOLERANCE && radial > 0.0 {
                 let rim = horizontal / radial * radius - DVec3::Z * half_height;
-                Feature::new(vec![DVec3::Z * half_height, rim], EDGE, 0)
+                Feature::new(smallvec![DVec3::Z * half_height, rim], EDGE, 0)
             } else {
-                Feature::new(vec![core.support_local(d)], VERTEX, 0)
+                Feature::new(smallvec![core.support_local(d)], VERTEX, 0)
             }
         }
     }
@@ -94,9 +100,9 @@ pub fn supporting_feature(core: &Core, dir_local: DVec3) -> Feature {
 
 /// A regular polygon inscribed in a cap circle, wound counter-clockwise seen from outside. Its
 /// corners are fixed in the shape's frame, so their ids stay put as the shape moves.
-fn cap(radius: f64, half_height: f64, top: bool) -> Vec<DVec3> {
+fn cap(radius: f64, half_height: f64, top: bool) -> FeaturePoints {
     let z = if top { half_height } else { -half_height };
-    let mut pts: Vec<DVec3> = (0..CAP_SIDES)
+    let mut pts: FeaturePoints = (0..CAP_SIDES)
         .map(|k| {
             let a = k as f64 / CAP_SIDES as f64 * std::f64::consts::TAU;
             DVec3::new(radius * a.cos(), radius * a.sin(), z)
@@ -137,8 +143,8 @@ fn polytope_feature(p: &Polytope, d: DVec3) -> Feature {
         }
     }
     match best {
-        Some((e, vo, _)) => Feature::new(vec![vi, vo], EDGE, e),
-        None => Feature::new(vec![vi], VERTEX, i),
+        Some((e, vo, _)) => Feature::new(smallvec![vi, vo], EDGE, e),
+        None => Feature::new(smallvec![vi], VERTEX, i),
     }
 }
 

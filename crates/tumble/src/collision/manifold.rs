@@ -6,6 +6,8 @@
 //! id naming the pair of features that made it, so the solver can match points between steps and
 //! warm-start them with last step's impulses.
 
+use smallvec::{smallvec, SmallVec};
+
 use crate::math::{DVec3, Transform};
 
 /// One contact point. `separation` is measured along the manifold normal: negative means the
@@ -118,7 +120,7 @@ impl Manifold {
 /// the point farthest from it, the point making the largest triangle with those two, and the point
 /// adding the most area outside that triangle. Areas are measured in the plane normal to `normal`.
 /// Ties keep the earlier candidate, so the choice is deterministic.
-pub fn reduce(candidates: &[ContactPoint], normal: DVec3) -> Vec<usize> {
+pub fn reduce(candidates: &[ContactPoint], normal: DVec3) -> SmallVec<[usize; MAX_POINTS]> {
     let n = candidates.len();
     if n <= MAX_POINTS {
         return (0..n).collect();
@@ -143,12 +145,12 @@ pub fn reduce(candidates: &[ContactPoint], normal: DVec3) -> Vec<usize> {
     };
     let second = argmax(&|i| along(pos(i) - pos(first)).length_squared());
     if second == usize::MAX {
-        return vec![first];
+        return smallvec![first];
     }
     let signed_area = |a: DVec3, b: DVec3, c: DVec3| (b - a).cross(c - a).dot(normal);
     let third = argmax(&|i| signed_area(pos(first), pos(second), pos(i)).abs());
     if third == usize::MAX {
-        return vec![first, second];
+        return smallvec![first, second];
     }
     // Wind the triangle counter-clockwise about the normal; a point outside edge (p, q) has
     // negative signed area there, and that area is what it adds to the patch.
@@ -161,9 +163,9 @@ pub fn reduce(candidates: &[ContactPoint], normal: DVec3) -> Vec<usize> {
         (0..3).fold(0.0_f64, |m, k| m.max(-signed_area(pos(tri[k]), pos(tri[(k + 1) % 3]), pos(i))))
     });
     if fourth == usize::MAX {
-        vec![first, second, third]
+        smallvec![first, second, third]
     } else {
-        vec![first, second, third, fourth]
+        smallvec![first, second, third, fourth]
     }
 }
 

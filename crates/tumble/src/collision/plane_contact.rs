@@ -12,6 +12,8 @@
 //! Feature ids name the shape's vertex (box corner, hull vertex, capsule end, cap corner), so they
 //! stay fixed while the shape slides or turns on the plane.
 
+use smallvec::SmallVec;
+
 use super::feature::supporting_feature;
 use super::manifold::{ContactPoint, Manifold};
 use super::support::{Core, Rounded};
@@ -36,7 +38,7 @@ pub fn collide_plane_convex(
         return None;
     }
     // The shape's points that may touch, in its local frame, with their ids.
-    let mut points: Vec<(DVec3, u32)> = Vec::with_capacity(12);
+    let mut points: SmallVec<[(DVec3, u32); 16]> = SmallVec::new();
     match convex.core {
         Core::Point => points.push((DVec3::ZERO, 0)),
         Core::Segment { half_height } => {
@@ -63,7 +65,8 @@ pub fn collide_plane_convex(
         let mid = on_b - n_world * (0.5 * sep);
         (sep <= margin).then(|| ContactPoint::new(pose_plane, pose_convex, n_world, mid, sep, id))
     };
-    let mut candidates: Vec<ContactPoint> = points.iter().filter_map(|&(p, id)| contact(p, id)).collect();
+    let mut candidates: SmallVec<[ContactPoint; 16]> =
+        points.iter().filter_map(|&(p, id)| contact(p, id)).collect();
     let curved =
         !matches!(convex.core, Core::Point | Core::Segment { .. } | Core::Cuboid { .. } | Core::Hull(_));
     let shallowest_miss = |c: &[ContactPoint]| {

@@ -19,6 +19,8 @@ use super::clip::clip_to_face;
 use super::manifold::{ContactPoint, Manifold};
 use super::polytope::Polytope;
 use super::segment::closest_segment_segment;
+use smallvec::SmallVec;
+
 use crate::math::{DVec3, Transform};
 use crate::shape::HullEdge;
 
@@ -68,8 +70,8 @@ struct Frames<'p, 'h> {
     a: &'p Polytope<'h>,
     b: &'p Polytope<'h>,
     b_in_a: Transform,
-    verts_b: Vec<DVec3>,
-    normals_b: Vec<DVec3>,
+    verts_b: SmallVec<[DVec3; 32]>,
+    normals_b: SmallVec<[DVec3; 32]>,
 }
 
 impl<'p, 'h> Frames<'p, 'h> {
@@ -102,8 +104,10 @@ impl<'p, 'h> Frames<'p, 'h> {
         let face_a = best(self.a.face_count(), &|f| self.face_a(f));
         let face_b = best(self.b.face_count(), &|f| self.face_b(f));
         // Edge data gathered once, so the E_A × E_B loop is plain arithmetic.
-        let edges_a: Vec<EdgeData> = self.a.edges().iter().map(|e| EdgeData::of_a(self, e)).collect();
-        let edges_b: Vec<EdgeData> = self.b.edges().iter().map(|e| EdgeData::of_b(self, e)).collect();
+        let edges_a: SmallVec<[EdgeData; 32]> =
+            self.a.edges().iter().map(|e| EdgeData::of_a(self, e)).collect();
+        let edges_b: SmallVec<[EdgeData; 32]> =
+            self.b.edges().iter().map(|e| EdgeData::of_b(self, e)).collect();
         let centre_a = self.a.interior_point();
         let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
         for (ia, ea) in edges_a.iter().enumerate() {
@@ -277,9 +281,9 @@ fn face_contact(
     let n_ref = reference.face_normal(ref_face);
     // The incident face is the one most anti-parallel to the reference normal.
     let inc_face = incident.best_face(-(inc_in_ref.rotation.inverse() * n_ref));
-    let ref_loop: Vec<DVec3> =
+    let ref_loop: SmallVec<[DVec3; 16]> =
         reference.face_vertices(ref_face).iter().map(|&v| reference.vertex(v as usize)).collect();
-    let inc_poly: Vec<DVec3> = incident
+    let inc_poly: SmallVec<[DVec3; 16]> = incident
         .face_vertices(inc_face)
         .iter()
         .map(|&v| inc_in_ref.transform_point(incident.vertex(v as usize)))
@@ -294,7 +298,7 @@ fn face_contact(
     let face_bits = (u32::from(reference_is_b) << 30)
         | ((ref_face as u32 & 0x7F) << 23)
         | ((inc_face as u32 & 0x7F) << 16);
-    let candidates: Vec<ContactPoint> = clipped
+    let candidates: SmallVec<[ContactPoint; 16]> = clipped
         .iter()
         .map(|c| {
             let mid = ref_pose.transform_point(c.point - n_ref * (0.5 * c.separation));

@@ -24,6 +24,8 @@
 //! clipped to `T`, separations measured from `T`'s plane). If nothing of the body lies over `T`,
 //! `T` gives no contact: its neighbour does. A vertex is handled through its two edges on `T`.
 
+use smallvec::{smallvec, SmallVec};
+
 use super::aabb::Aabb;
 use super::feature::{Feature, EDGE, EDGE_SIN_TOLERANCE, FACE, FACE_COS_TOLERANCE, VERTEX};
 use crate::math::DVec3;
@@ -135,10 +137,10 @@ pub fn triangle_feature(v: &[DVec3; 3], d: DVec3) -> Feature {
     let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
     let c = n.dot(d);
     if c >= FACE_COS_TOLERANCE {
-        return Feature { points: v.to_vec(), code: FACE };
+        return Feature { points: SmallVec::from_slice(v), code: FACE };
     }
     if c <= -FACE_COS_TOLERANCE {
-        return Feature { points: vec![v[0], v[2], v[1]], code: FACE | 1 };
+        return Feature { points: smallvec![v[0], v[2], v[1]], code: FACE | 1 };
     }
     let dots = v.map(|p| p.dot(d));
     let i = if dots[0] >= dots[1] && dots[0] >= dots[2] {
@@ -158,8 +160,8 @@ pub fn triangle_feature(v: &[DVec3; 3], d: DVec3) -> Feature {
         }
     }
     match best {
-        Some((e, pts, _)) => Feature { points: pts.to_vec(), code: EDGE | e as u16 },
-        None => Feature { points: vec![v[i]], code: VERTEX | i as u16 },
+        Some((e, pts, _)) => Feature { points: SmallVec::from_slice(&pts), code: EDGE | e as u16 },
+        None => Feature { points: smallvec![v[i]], code: VERTEX | i as u16 },
     }
 }
 
@@ -198,12 +200,12 @@ mod tests {
     #[test]
     fn features_of_a_triangle() {
         assert_eq!(triangle_feature(&TRI, DVec3::Z).code, FACE);
-        assert_eq!(triangle_feature(&TRI, -DVec3::Z).points, vec![TRI[0], TRI[2], TRI[1]]);
+        assert_eq!(triangle_feature(&TRI, -DVec3::Z).points.to_vec(), vec![TRI[0], TRI[2], TRI[1]]);
         // Along −Y the edge from corner 0 to corner 1 faces the direction.
         let f = triangle_feature(&TRI, -DVec3::Y);
         assert_eq!((f.code, f.points.len()), (EDGE, 2));
         let f = triangle_feature(&TRI, DVec3::new(1.0, -0.5, 0.2).normalize());
-        assert_eq!((f.code, f.points), (VERTEX | 1, vec![DVec3::X]));
+        assert_eq!((f.code, f.points.to_vec()), (VERTEX | 1, vec![DVec3::X]));
     }
 
     #[test]

@@ -11,7 +11,7 @@
 //! bodies; a joint added to it; an awake body touching it; a body or joint linked to it removed.
 
 use crate::body::BodyKind;
-use crate::id::{BodyId, RawId};
+use crate::id::BodyId;
 use crate::world::World;
 
 /// When bodies fall asleep.
@@ -33,14 +33,16 @@ impl Default for SleepSettings {
 }
 
 /// Union–find over body slots, with path halving and union by lower root (deterministic: the
-/// root of a set is always its lowest slot).
-pub(crate) struct UnionFind {
-    parent: Vec<u32>,
+/// root of a set is always its lowest slot). Works in a caller's buffer, so a step reuses it.
+pub(crate) struct UnionFind<'a> {
+    parent: &'a mut Vec<u32>,
 }
 
-impl UnionFind {
-    pub fn new(n: usize) -> UnionFind {
-        UnionFind { parent: (0..n as u32).collect() }
+impl<'a> UnionFind<'a> {
+    pub fn new(n: usize, parent: &'a mut Vec<u32>) -> UnionFind<'a> {
+        parent.clear();
+        parent.extend(0..n as u32);
+        UnionFind { parent }
     }
 
     pub fn find(&mut self, mut i: u32) -> u32 {
@@ -59,6 +61,22 @@ impl UnionFind {
             self.parent[hi as usize] = lo;
         }
     }
+}
+
+/// The island and sleep pass's working buffers, refilled every step (kept by the world so a
+/// steady-state step allocates nothing).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct IslandScratch {
+    /// Body-slot pairs of touching contacts between dynamic bodies.
+    pub contact_links: Vec<(u32, u32)>,
+    /// Body-slot pairs of unbroken joints.
+    pub joint_links: Vec<(u32, u32)>,
+    /// Sleeping islands to wake.
+    pub to_wake: Vec<u32>,
+    /// Union–find parents.
+    pub parent: Vec<u32>,
+    /// Shortest sleep time per island root.
+    pub min_sleep: Vec<f64>,
 }
 
 impl World {
@@ -85,40 +103,46 @@ impl World {
         }
     }
 
-    /// Wakes the sleeping side of every link between an awake dynamic body and a sleeping one.
-    /// `links` are pairs of body slots (joints are added here).
-    pub(crate) fn wake_islands_touched_by_awake_bodies(&mut self, links: &[(u32, u32)]) {
-        let mut to_wake = Vec::new();
-        let joint_links: Vec<(u32, u32)> = self.joint_links();
-        for &(a, b) in links.iter().chain(&joint_links) {
+    /// Wakes the sleeping side of every link between an awake dynamic body and a sleeping one:
+    /// the touching contacts' links (`scratch.contact_links`, filled by the caller) and the
+    /// joints' (gathered here into `scratch.joint_links`).
+    pub(crate) fn wake_islands_touched_by_awake_bodies(&mut self) {
+        let mut scratch = std::mem::take(&mut self.scratch);
+        self.gather_joint_links(&mut scratch.joint_links);
+        scratch.to_wake.clear();
+        for &(a, b) in scratch.contact_links.iter().chain(&scratch.joint_links) {
             let state =
                 |i: u32| self.bodies.iter_slot(i as usize).map(|body| (body.kind, body.sleeping_island));
             if let (Some((ka, ia)), Some((kb, ib))) = (state(a), state(b)) {
                 match (ia, ib) {
-                    (None, Some(island)) if ka != BodyKind::Static => to_wake.push(island),
-                    (Some(island), None) if kb != BodyKind::Static => to_wake.push(island),
+                    (None, Some(island)) if ka != BodyKind::Static => scratch.to_wake.push(island),
+                    (Some(island), None) if kb != BodyKind::Static => scratch.to_wake.push(island),
                     _ => {}
                 }
             }
         }
-        to_wake.sort_unstable();
-        to_wake.dedup();
-        for island in to_wake {
+        scratch.to_wake.sort_unstable();
+        scratch.to_wake.dedup();
+        for &island in &scratch.to_wake {
             self.wake_island(island);
         }
+        self.scratch = scratch;
     }
 
-    fn joint_links(&self) -> Vec<(u32, u32)> {
-        self.joints
-            .iter()
-            .filter(|(_, j)| !j.broken)
-            .map(|(_, j)| (j.body_a.index() as u32, j.body_b.index() as u32))
-            .collect()
+    fn gather_joint_links(&self, links: &mut Vec<(u32, u32)>) {
+        links.clear();
+        links.extend(
+            self.joints
+                .iter()
+                .filter(|(_, j)| !j.broken)
+                .map(|(_, j)| (j.body_a.index() as u32, j.body_b.index() as u32)),
+        );
     }
 
     /// After a step of `dt`: advance sleep timers, build islands over joints and the touching
-    /// `contact_links`, and put to sleep the islands that have rested long enough.
-    pub(crate) fn update_sleep(&mut self, dt: f64, contact_links: &[(u32, u32)]) {
+    /// contacts (`scratch.contact_links`), and put to sleep the islands that have rested long
+    /// enough.
+    pub(crate) fn update_sleep(&mut self, dt: f64) {
         let settings = self.sleep_settings.clone();
         let n = self.bodies.capacity_index();
         // Bodies that can never sleep keep their island awake: their timer stays at zero.
@@ -134,39 +158,42 @@ impl World {
         if !settings.enabled {
             return;
         }
-        let mut sets = UnionFind::new(n);
+        let mut scratch = std::mem::take(&mut self.scratch);
+        // The joints may have changed (broken) in the solve since the wake pass gathered them.
+        self.gather_joint_links(&mut scratch.joint_links);
+        let mut sets = UnionFind::new(n, &mut scratch.parent);
         let is_linkable = |world: &World, i: u32| {
             world
                 .bodies
                 .iter_slot(i as usize)
                 .is_some_and(|b| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none())
         };
-        for &(a, b) in contact_links.iter().chain(&self.joint_links()) {
+        for &(a, b) in scratch.contact_links.iter().chain(&scratch.joint_links) {
             if is_linkable(self, a) && is_linkable(self, b) {
                 sets.union(a, b);
             }
         }
         // The shortest rest in each island decides.
-        let mut min_sleep = vec![f64::INFINITY; n];
+        let min_sleep = &mut scratch.min_sleep;
+        min_sleep.clear();
+        min_sleep.resize(n, f64::INFINITY);
         for (id, body) in self.bodies.iter() {
             if body.kind == BodyKind::Dynamic && body.sleeping_island.is_none() {
                 let root = sets.find(id.index() as u32) as usize;
                 min_sleep[root] = min_sleep[root].min(body.sleep_time);
             }
         }
-        let ids: Vec<RawId> = self.bodies.iter().map(|(id, _)| id).collect();
-        for id in ids {
-            let root = sets.find(id.index() as u32);
-            let body = self.bodies.get_mut(id).expect("listed just above");
-            if body.kind == BodyKind::Dynamic
-                && body.sleeping_island.is_none()
-                && min_sleep[root as usize] >= settings.time_to_sleep
-            {
-                body.sleeping_island = Some(root);
-                body.state.linear_velocity = crate::math::DVec3::ZERO;
-                body.state.angular_velocity = crate::math::DVec3::ZERO;
+        for (id, body) in self.bodies.iter_mut() {
+            if body.kind == BodyKind::Dynamic && body.sleeping_island.is_none() {
+                let root = sets.find(id.index() as u32);
+                if min_sleep[root as usize] >= settings.time_to_sleep {
+                    body.sleeping_island = Some(root);
+                    body.state.linear_velocity = crate::math::DVec3::ZERO;
+                    body.state.angular_velocity = crate::math::DVec3::ZERO;
+                }
             }
         }
+        self.scratch = scratch;
     }
 
     /// Number of dynamic bodies awake.
@@ -181,7 +208,8 @@ mod tests {
 
     #[test]
     fn union_find_roots_are_lowest_slots() {
-        let mut uf = UnionFind::new(6);
+        let mut parent = Vec::new();
+        let mut uf = UnionFind::new(6, &mut parent);
         uf.union(4, 2);
         uf.union(5, 4);
         uf.union(1, 3);

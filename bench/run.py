@@ -1,0 +1,238 @@
+#!/usr/bin/env python3
+"""Tumble and its peers side by side on the shared benchmark scenes (BENCHMARKS.md).
+
+    python3 bench/run.py                      # the table: every scene, 5 runs per engine
+    python3 bench/run.py --scenes pyramid,chain --runs 7
+    python3 bench/run.py --scaling            # Tumble's steps/s against body count
+    python3 bench/run.py --skip-install       # reuse bench/.venv and the built binaries
+
+It installs what it runs: a virtualenv in bench/.venv with PyBullet and MuJoCo from PyPI, the
+Rapier peer (bench/rapier, its own cargo project) and the `tumble` binary, both built --release.
+Each scene is exported once by `tumble bench SCENE --export` and every engine builds it from that
+file, so all of them run the same bodies, shapes, joints and settings.
+
+Runs alternate engine by engine: round 1 runs each engine once, then round 2, and so on, so a
+change in the machine's load falls on every engine alike. The table gives the median steps/s of
+the rounds, the ratio Tumble/peer, the quality result and the settings. Python peers are timed
+over one plain loop of step calls; their quality result comes from one more, untimed run.
+An engine whose run takes longer than --timeout seconds is reported as not finishing.
+"""
+
+import argparse
+import datetime
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BENCH = os.path.join(ROOT, "bench")
+VENV = os.path.join(BENCH, ".venv")
+WORK = os.path.join(ROOT, "target", "bench")
+TUMBLE = os.path.join(ROOT, "target", "release", "tumble")
+RAPIER = os.path.join(BENCH, "rapier", "target", "release", "tumble-bench-rapier")
+ENGINES = ["tumble", "rapier", "pybullet", "mujoco"]
+
+# Steps per run in the table: the scene's own count where the whole table stays under ~20 minutes
+# on a 2-core machine, fewer for the big scenes (their quality result is then after these steps).
+TABLE_STEPS = {
+    "pyramid": 1000,
+    "large_pyramid": 20,
+    "rain": 120,
+    "chain": 1000,
+    "ragdolls": 120,
+    "convex_pile": 120,
+    "tumbling": 200,
+}
+SCALING = [("pyramid", [10, 20, 40, 100], 100), ("rain", [500, 2000, 8000], 100)]
+
+
+def sh(cmd, **kw):
+    print("+", " ".join(cmd), file=sys.stderr, flush=True)
+    return subprocess.run(cmd, check=True, **kw)
+
+
+def install(skip):
+    python = os.path.join(VENV, "bin", "python")
+    if skip:
+        return python
+    if not os.path.exists(python):
+        sh([sys.executable, "-m", "venv", VENV])
+    sh([python, "-m", "pip", "install", "-q", "pybullet", "mujoco"])
+    sh(["cargo", "build", "--release", "--locked", "-p", "tumble-cli"], cwd=ROOT)
+    sh(["cargo", "build", "--release", "--manifest-path", os.path.join(BENCH, "rapier", "Cargo.toml")])
+    return python
+
+
+def machine():
+    cpu = platform.processor() or "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    uname = subprocess.run(["uname", "-a"], capture_output=True, text=True).stdout.strip()
+    return uname, cpu, os.cpu_count()
+
+
+def run_json(cmd, timeout):
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    t0 = time.perf_counter()
+    try:
+        out = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
+    except subprocess.TimeoutExpired:
+        return {"error": f"did not finish within {timeout:.0f} s"}
+    if out.returncode != 0:
+        tail = (out.stderr.strip().splitlines() or ["?"])[-1]
+        return {"error": f"failed: {tail[:120]}"}
+    try:
+        result = json.loads(out.stdout.strip().splitlines()[-1])
+    except (ValueError, IndexError):
+        return {"error": "no result"}
+    result["wall"] = time.perf_counter() - t0
+    return result
+
+
+def command(engine, python, scene_file, scene, steps, runs, quality, threads):
+    if engine == "tumble":
+        return [TUMBLE, "bench", scene, "--json", "--runs", str(runs), "--steps", str(steps), "--threads", str(threads)]
+    if engine == "rapier":
+        return [RAPIER, scene_file, "--runs", str(runs), "--steps", str(steps)]
+    script = os.path.join(BENCH, "peers", f"{engine}_peer.py")
+    cmd = [python, script, scene_file, "--runs", str(runs), "--steps", str(steps)]
+    return cmd + (["--quality-only"] if quality else ["--no-quality"])
+
+
+def bench_scene(scene, engines, python, steps, rounds, timeout, threads, size=None):
+    scene_file = os.path.join(WORK, f"{scene}{'' if size is None else '-' + str(size)}.json")
+    export = [TUMBLE, "bench", scene, "--export", scene_file] + ([] if size is None else ["--size", str(size)])
+    sh(export, stdout=subprocess.DEVNULL)
+    results = {e: {"rates": [], "last": None, "error": None} for e in engines}
+    for r in range(rounds):
+        for e in engines:
+            res = results[e]
+            if res["error"]:
+                continue
+            cmd = command(e, python, scene_file, scene, steps, 1, False, threads)
+            if size is not None and e == "tumble":
+                cmd += ["--size", str(size)]
+            out = run_json(cmd, timeout)
+            if "error" in out or "unsupported" in out:
+                res["error"] = out.get("error") or "cannot build the scene: " + out["unsupported"]
+                continue
+            res["rates"].append(out["steps_per_second"])
+            res["last"] = out
+            print(f"  {scene} round {r + 1}: {e} {out['steps_per_second']:.1f} steps/s", file=sys.stderr, flush=True)
+    for e in engines:
+        res = results[e]
+        if e in ("pybullet", "mujoco") and res["last"] is not None:
+            q = run_json(command(e, python, scene_file, scene, steps, 0, True, threads), timeout * 2)
+            res["last"]["metrics"] = q.get("metrics", {"quality run": q.get("error", "?")})
+    return results
+
+
+def fmt_metrics(metrics):
+    parts = []
+    for k, v in (metrics or {}).items():
+        if isinstance(v, bool):
+            parts.append(f"{k} {'yes' if v else 'no'}")
+        elif isinstance(v, (int,)) and not isinstance(v, bool):
+            parts.append(f"{k} {v}")
+        elif isinstance(v, float):
+            if "error" in k:
+                parts.append(f"{k} {v:.2e}")
+            elif abs(v) < 0.1:
+                parts.append(f"{k} {v * 100:.2f} cm")
+            else:
+                parts.append(f"{k} {v:.3f} m")
+        else:
+            parts.append(f"{k} {v}")
+    return ", ".join(parts)
+
+
+def table(all_results, engines, steps_of):
+    lines = [
+        "| scene | steps | engine | steps/s (median) | Tumble / engine | quality | settings |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for scene, results in all_results.items():
+        t = results.get("tumble", {})
+        t_rate = statistics.median(t["rates"]) if t and t["rates"] else None
+        for e in engines:
+            res = results[e]
+            if res["rates"]:
+                rate = statistics.median(res["rates"])
+                last = res["last"]
+                ratio = f"{t_rate / rate:.2f}" if t_rate else "—"
+                settings = last.get("iterations", "")
+                if "substeps" in last:
+                    settings += f"; substeps {last['substeps']}"
+                settings += f"; threads {last.get('threads', 1)}; {len(res['rates'])} runs"
+                if res["error"]:
+                    settings += f" (the next {res['error']})"
+                if last.get("note"):
+                    settings += f"; {last['note']}"
+                version = last.get("version", "")
+                lines.append(
+                    f"| {scene} | {steps_of(scene)} | {e} {version} | {rate:,.1f} | {ratio} | "
+                    f"{last.get('quality') or fmt_metrics(last.get('metrics'))} | {settings} |"
+                )
+            else:
+                lines.append(f"| {scene} | {steps_of(scene)} | {e} | — | — | {res['error']} | |")
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--scenes", default=",".join(TABLE_STEPS), help="comma-separated scene names")
+    parser.add_argument("--engines", default=",".join(ENGINES))
+    parser.add_argument("--runs", type=int, default=5, help="rounds (timed runs per engine)")
+    parser.add_argument("--steps", type=int, default=None, help="steps per run for every scene")
+    parser.add_argument("--threads", type=int, default=1, help="Tumble's collision threads")
+    parser.add_argument("--timeout", type=float, default=60.0, help="seconds one run may take")
+    parser.add_argument("--scaling", action="store_true", help="Tumble's steps/s against body count instead")
+    parser.add_argument("--skip-install", action="store_true")
+    parser.add_argument("--out", default=None, help="write the report (markdown) here too")
+    args = parser.parse_args()
+    os.makedirs(WORK, exist_ok=True)
+    python = install(args.skip_install)
+    uname, cpu, cores = machine()
+    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    header = f"date: {date}\nmachine: {uname}\ncpu: {cpu} ({cores} logical cores)\n"
+    if args.scaling:
+        rows = ["| scene | size | bodies | steps | steps/s (median) | body-steps/s | quality |", "|---|---|---|---|---|---|---|"]
+        for scene, sizes, steps in SCALING:
+            for size in sizes:
+                res = bench_scene(scene, ["tumble"], python, steps, args.runs, args.timeout, args.threads, size)
+                t = res["tumble"]
+                if t["rates"]:
+                    rate = statistics.median(t["rates"])
+                    bodies = t["last"]["bodies"]
+                    rows.append(
+                        f"| {scene} | {size} | {bodies} | {steps} | {rate:,.1f} | {rate * bodies:,.0f} | {t['last']['quality']} |"
+                    )
+                else:
+                    rows.append(f"| {scene} | {size} | | {steps} | — | — | {t['error']} |")
+        report = header + f"Tumble, threads {args.threads}, {args.runs} runs each\n\n" + "\n".join(rows) + "\n"
+    else:
+        engines = args.engines.split(",")
+        scenes = args.scenes.split(",")
+        steps_of = lambda s: args.steps or TABLE_STEPS.get(s, 100)  # noqa: E731
+        all_results = {}
+        for scene in scenes:
+            all_results[scene] = bench_scene(scene, engines, python, steps_of(scene), args.runs, args.timeout, args.threads)
+        report = header + "dt 1/60 s; steps per run as listed\n\n" + table(all_results, engines, steps_of) + "\n"
+    print(report)
+    if args.out:
+        with open(args.out, "w") as f:
+            f.write(report)
+
+
+if __name__ == "__main__":
+    main()
