@@ -4,6 +4,8 @@
 //! tumble                      run the built-in demo (same as `tumble demo`)
 //! tumble demo [--out FILE]    T-handle flipping in zero gravity → out/demo.csv
 //! tumble run SCENE [--out FILE.csv] [--every N] [--duration S] [--dt S]
+//!                  [--checkpoint FILE [--checkpoint-every N]]
+//! tumble run --resume FILE    carry on a killed run from its checkpoint
 //! tumble mass MESH [--density D]      mass properties of an OBJ/STL as JSON
 //! tumble view SCENE.toml | REC.csv --scene SCENE.toml [-o out.html]   a page that plays it in 3D
 //! tumble export SCENE.toml | REC.csv --scene SCENE.toml [-o out.glb]  glTF 2.0 animation
@@ -12,6 +14,7 @@
 //! Errors go to stderr as `error: …` with exit status 1; the program never ends in a panic
 //! message for bad input.
 
+mod checkpoint;
 mod demo;
 mod export;
 mod mass;
@@ -50,7 +53,8 @@ enum Command {
     /// Run a scene file, record it to CSV and print a summary with conservation checks.
     Run {
         /// The scene (TOML).
-        scene: PathBuf,
+        #[arg(required_unless_present = "resume")]
+        scene: Option<PathBuf>,
         /// Where to write the recording [default: out/<scene name>.csv].
         #[arg(long, value_name = "FILE.csv")]
         out: Option<PathBuf>,
@@ -63,6 +67,18 @@ enum Command {
         /// Time step in seconds, overriding the scene's `world.dt`.
         #[arg(long, value_name = "S", allow_negative_numbers = true)]
         dt: Option<f64>,
+        /// Write a checkpoint to FILE every --checkpoint-every steps, replacing it atomically (a
+        /// kill at any moment leaves the previous one whole); `--resume FILE` carries the run on.
+        #[arg(long, value_name = "FILE")]
+        checkpoint: Option<PathBuf>,
+        /// Steps between checkpoints.
+        #[arg(long, value_name = "N", default_value_t = 1000, requires = "checkpoint", value_parser = clap::value_parser!(u64).range(1..))]
+        checkpoint_every: u64,
+        /// Carry on the run that wrote checkpoint FILE: its recording is cut back to the frames the
+        /// checkpoint covers and continued, to the same bytes an uninterrupted run writes; new
+        /// checkpoints go to FILE.
+        #[arg(long, value_name = "FILE", conflicts_with_all = ["scene", "out", "every", "duration", "dt", "checkpoint", "checkpoint_every"])]
+        resume: Option<PathBuf>,
     },
     /// Print the mass properties of a closed mesh (OBJ or STL) as JSON.
     Mass {
@@ -139,8 +155,16 @@ fn main() -> ExitCode {
     let result = match cli.command {
         None => demo::run_demo(&PathBuf::from(demo::DEFAULT_OUT)),
         Some(Command::Demo { out }) => demo::run_demo(&out),
-        Some(Command::Run { scene, out, every, duration, dt }) => {
-            run::run_scene_file(&scene, out, every, duration, dt)
+        Some(Command::Run { scene, out, every, duration, dt, checkpoint, checkpoint_every, resume }) => {
+            match (resume, scene) {
+                (Some(resume), _) => run::resume_from_checkpoint(&resume),
+                (None, Some(scene)) => {
+                    let checkpoint =
+                        checkpoint.map(|path| run::Checkpointing { path, every: checkpoint_every });
+                    run::run_scene_file(&scene, out, every, duration, dt, checkpoint)
+                }
+                (None, None) => Err("give a scene to run, or --resume CHECKPOINT".into()),
+            }
         }
         Some(Command::Mass { mesh, density }) => mass::print_mass(&mesh, density),
         Some(Command::View { input, out, fps }) => view::view(&input.source(Some(fps)), out),

@@ -1,8 +1,9 @@
 //! `World::step`: the phases of one time step, in order. This file reads as the table of contents
 //! of the pipeline in DESIGN.md; each phase lives in its own module.
 //!
-//! Today the pipeline is: the soft-step solve (forces, gravity, joints, exact rotation update, in
-//! substeps), then accumulators are cleared. Collision joins as its modules land.
+//! The pipeline: broad and narrow phase, waking, the non-finite check, the soft-step solve
+//! (forces, gravity, contacts, joints, exact rotation update, in substeps), the check again, sleep,
+//! then accumulators are cleared.
 
 use crate::id::BodyId;
 use crate::math::DVec3;
@@ -31,8 +32,14 @@ impl World {
         let links = self.contact_manager.touching_links(&self.bodies);
         self.wake_islands_touched_by_awake_bodies(&links);
 
+        // Bodies whose numbers would overflow leave the simulation before they can spread NaN
+        // through contacts and joints; after the solve, anything non-finite that got through
+        // goes back to its last finite state and leaves too (non_finite.rs).
+        self.isolate_bodies_about_to_overflow(dt);
+
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
         self.solve(dt);
+        self.isolate_non_finite_bodies();
 
         // Move the proxies of the bodies that moved, so queries between steps see the current
         // poses (query.rs); the next step's broad phase then finds them already in place.

@@ -79,6 +79,12 @@ pub struct World {
     /// The low-order bits lost from `time` by the last addition (Kahan summation).
     pub(crate) time_compensation: f64,
     pub(crate) step_count: u64,
+    /// Bodies the last step isolated for non-finite state (`non_finite.rs`).
+    pub(crate) non_finite_events: Vec<crate::non_finite::NonFiniteBody>,
+    /// Each simulated body's slot and state at the start of the step, kept between steps to reuse
+    /// the allocation (`non_finite.rs`).
+    #[serde(skip)]
+    pub(crate) step_start_states: Vec<(usize, crate::body::BodyState)>,
 }
 
 impl Default for World {
@@ -145,6 +151,8 @@ impl World {
             time: 0.0,
             time_compensation: 0.0,
             step_count: 0,
+            non_finite_events: Vec::new(),
+            step_start_states: Vec::new(),
         })
     }
 

@@ -123,7 +123,7 @@ impl World {
         let n = self.bodies.capacity_index();
         // Bodies that can never sleep keep their island awake: their timer stays at zero.
         for (_, body) in self.bodies.iter_mut() {
-            if body.kind != BodyKind::Dynamic || body.sleeping_island.is_some() {
+            if body.kind != BodyKind::Dynamic || body.sleeping_island.is_some() || body.isolated {
                 continue;
             }
             let resting = body.state.linear_velocity.length() < settings.linear_threshold
@@ -139,7 +139,7 @@ impl World {
             world
                 .bodies
                 .iter_slot(i as usize)
-                .is_some_and(|b| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none())
+                .is_some_and(|b| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none() && !b.isolated)
         };
         for &(a, b) in contact_links.iter().chain(&self.joint_links()) {
             if is_linkable(self, a) && is_linkable(self, b) {
@@ -149,7 +149,7 @@ impl World {
         // The shortest rest in each island decides.
         let mut min_sleep = vec![f64::INFINITY; n];
         for (id, body) in self.bodies.iter() {
-            if body.kind == BodyKind::Dynamic && body.sleeping_island.is_none() {
+            if body.kind == BodyKind::Dynamic && body.sleeping_island.is_none() && !body.isolated {
                 let root = sets.find(id.index() as u32) as usize;
                 min_sleep[root] = min_sleep[root].min(body.sleep_time);
             }
@@ -160,6 +160,7 @@ impl World {
             let body = self.bodies.get_mut(id).expect("listed just above");
             if body.kind == BodyKind::Dynamic
                 && body.sleeping_island.is_none()
+                && !body.isolated
                 && min_sleep[root as usize] >= settings.time_to_sleep
             {
                 body.sleeping_island = Some(root);
@@ -169,9 +170,12 @@ impl World {
         }
     }
 
-    /// Number of dynamic bodies awake.
+    /// Number of dynamic bodies awake (isolated ones, `non_finite.rs`, are not simulated at all).
     pub fn awake_body_count(&self) -> usize {
-        self.bodies.iter().filter(|(_, b)| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none()).count()
+        self.bodies
+            .iter()
+            .filter(|(_, b)| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none() && !b.isolated)
+            .count()
     }
 }
 
