@@ -15,6 +15,7 @@ pub mod mass;
 pub mod math;
 pub mod non_finite;
 pub mod query;
+pub mod scenes;
 pub mod shape;
 pub mod snapshot;
 mod state_hash;
