@@ -1,0 +1,57 @@
+//! The geometry fuzz targets (`fuzz/fuzz_targets/{convex_hull,narrow_phase}.rs`) as proptests, so
+//! stable `cargo test` runs them: the same checks (`fuzz_support`), fed both from random bytes
+//! through `arbitrary` (the fuzzers' input types) and from the shape strategies the collision
+//! tests use. Crashes the fuzzers found are kept below as `fuzz_regression_*` tests.
+
+mod fuzz_support;
+mod shape_strategies;
+
+use arbitrary::{Arbitrary, Unstructured};
+use fuzz_support::{check_hull, check_pair, check_shapes, HullInput, PairInput};
+use proptest::prelude::*;
+use proptest::test_runner::Config;
+use shape_strategies::{convex_shape, pose, scale, vec3};
+use tumble::{ConvexHull, Shape};
+
+fn from_bytes<'a, T: Arbitrary<'a>>(bytes: &'a [u8]) -> Option<T> {
+    T::arbitrary_take_rest(Unstructured::new(bytes)).ok()
+}
+
+fn bytes(max: usize) -> impl Strategy<Value = Vec<u8>> {
+    proptest::collection::vec(any::<u8>(), 0..max)
+}
+
+proptest! {
+    #![proptest_config(Config { cases: 512, ..Config::default() })]
+
+    #[test]
+    fn convex_hull_from_fuzz_bytes(data in bytes(800)) {
+        if let Some(input) = from_bytes::<HullInput>(&data) {
+            check_hull(&input);
+        }
+    }
+
+    #[test]
+    fn narrow_phase_from_fuzz_bytes(data in bytes(600)) {
+        if let Some(input) = from_bytes::<PairInput>(&data) {
+            check_pair(&input);
+        }
+    }
+
+    /// Primitives and hulls of random points, from the collision tests' strategies.
+    #[test]
+    fn narrow_phase_pairs_are_symmetric(
+        a in prop_oneof![convex_shape(), random_hull()],
+        b in prop_oneof![convex_shape(), random_hull()],
+        pa in pose(), pb in pose(),
+    ) {
+        // Pull B to within reach of A, so most cases touch.
+        let pb = tumble::Transform::new(pa.translation + 0.4 * (pb.translation - pa.translation), pb.rotation);
+        check_shapes(&a, &pa, &b, &pb, scale(&a) + scale(&b));
+    }
+}
+
+fn random_hull() -> impl Strategy<Value = Shape> {
+    proptest::collection::vec(vec3(2.0), 4..40)
+        .prop_filter_map("degenerate hull", |points| ConvexHull::new(&points).ok().map(Shape::ConvexHull))
+}
