@@ -55,3 +55,26 @@ fn random_hull() -> impl Strategy<Value = Shape> {
     proptest::collection::vec(vec3(2.0), 4..40)
         .prop_filter_map("degenerate hull", |points| ConvexHull::new(&points).ok().map(Shape::ConvexHull))
 }
+
+/// Ten points within 1 cm, two of them 44 µm apart: the hull builds, but a merged face keeps a
+/// vertex on one of its edges, and fanning that face gave a zero-area triangle that the mesh
+/// checks of `MassProperties::from_mesh` rejected — a valid hull without mass properties. Fixed
+/// by computing a hull's mass properties without the mesh checks it already passed when it was
+/// built (`MassProperties::from_hull_triangles`).
+#[test]
+fn fuzz_regression_hull_sliver_triangle_in_face_fan() {
+    let input: HullInput =
+        from_bytes(include_bytes!("fuzz_regressions/hull_sliver_triangle_in_face_fan.bin")).unwrap();
+    check_hull(&input);
+}
+
+/// Two cylinders of 100 m overlapping by 195 m: B–A's EPA picked a normal along which the overlap
+/// is 0.014 m (7e-5 of the size) deeper than along A–B's, and reported that depth. Left as EPA's
+/// accuracy on deep overlap of round shapes (contacts in a running world are millimetres deep);
+/// the check allows 1e-4 of the pair's size (`fuzz_support::DEPTH_ACCURACY`).
+#[test]
+fn fuzz_regression_narrow_phase_deep_cylinders_epa_depth() {
+    let input: PairInput =
+        from_bytes(include_bytes!("fuzz_regressions/narrow_phase_deep_cylinders_epa_depth.bin")).unwrap();
+    check_pair(&input);
+}
