@@ -131,7 +131,8 @@ pub fn soak(name: &str, size: Option<usize>, budget: Duration) -> SoakReport {
 pub fn problems(r: &SoakReport) -> Vec<String> {
     let mut problems = Vec::new();
     let allowed = r.initial_energy + 0.01 * r.initial_energy.abs().max(1.0);
-    if !(r.max_energy <= allowed) {
+    // NaN energy fails too.
+    if r.max_energy > allowed || r.max_energy.is_nan() {
         problems.push(format!("energy rose to {:.6e} J from {:.6e} J", r.max_energy, r.initial_energy));
     }
     if r.max_escaped > 0 {
