@@ -98,3 +98,16 @@ fn fuzz_regression_narrow_phase_small_cylinder_deep_in_large() {
         from_bytes(include_bytes!("fuzz_regressions/narrow_phase_small_cylinder_deep_in_large.bin")).unwrap();
     check_pair(&input);
 }
+
+/// A cone 2 cm wide and 200 m tall inside a 14 m wide cone of the same height, both at one spot
+/// and turned alike: B–A reports 5.774 m of overlap along its normal, as the supports confirm;
+/// A–B's normal is the same to 1e-3, but its clipped manifold points said only 1.129 m — the
+/// deepest part of the needle lay beyond the reference face and was clipped away. Fixed in
+/// `collide_convex`: a clipped manifold far shallower than the measured overlap is replaced by
+/// the one exact point.
+#[test]
+fn fuzz_regression_narrow_phase_needle_cone_inside_cone() {
+    let input: PairInput =
+        from_bytes(include_bytes!("fuzz_regressions/narrow_phase_needle_cone_inside_cone.bin")).unwrap();
+    check_pair(&input);
+}
