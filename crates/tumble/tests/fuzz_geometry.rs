@@ -111,3 +111,15 @@ fn fuzz_regression_narrow_phase_needle_cone_inside_cone() {
         from_bytes(include_bytes!("fuzz_regressions/narrow_phase_needle_cone_inside_cone.bin")).unwrap();
     check_pair(&input);
 }
+
+/// Two capsules 200 m long crossing at their centres at a shallow angle: the closest points of
+/// the axes were a round-off apart, yet above the 1e-12 × radius under which the axes count as
+/// crossing, so the normal followed round-off; B–A reported 1.265 m of overlap for the true
+/// 0.055 m. Fixed in `capsule_capsule`: the crossing threshold scales with the segments' lengths.
+#[test]
+fn fuzz_regression_narrow_phase_long_capsules_crossing_shallow() {
+    let input: PairInput =
+        from_bytes(include_bytes!("fuzz_regressions/narrow_phase_long_capsules_crossing_shallow.bin"))
+            .unwrap();
+    check_pair(&input);
+}
