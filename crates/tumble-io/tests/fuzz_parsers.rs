@@ -7,7 +7,7 @@ mod fuzz_support;
 
 use fuzz_support::{check_obj, check_scene_text, check_stl};
 use proptest::prelude::*;
-use proptest::test_runner::Config;
+use proptest::test_runner::{Config, RngSeed};
 
 const SCENES: [&str; 6] = [
     include_str!("../../../scenes/stack.toml"),
@@ -89,7 +89,9 @@ fn stl_binary() -> impl Strategy<Value = Vec<u8>> {
 }
 
 proptest! {
-    #![proptest_config(Config { cases: 256, ..Config::default() })]
+    // A fixed seed: the same cases on every run, so a rare find cannot make CI flaky; the fuzzers
+    // are what explores.
+    #![proptest_config(Config { cases: 256, rng_seed: RngSeed::Fixed(0x9a25_e125), ..Config::default() })]
 
     #[test]
     fn edited_scenes_never_panic(scene in 0..SCENES.len(), edits in proptest::collection::vec(edit(), 1..6)) {

@@ -9,7 +9,7 @@ mod shape_strategies;
 use arbitrary::{Arbitrary, Unstructured};
 use fuzz_support::{check_hull, check_pair, check_shapes, HullInput, PairInput};
 use proptest::prelude::*;
-use proptest::test_runner::Config;
+use proptest::test_runner::{Config, RngSeed};
 use shape_strategies::{convex_shape, pose, scale, vec3};
 use tumble::{ConvexHull, Shape};
 
@@ -22,7 +22,9 @@ fn bytes(max: usize) -> impl Strategy<Value = Vec<u8>> {
 }
 
 proptest! {
-    #![proptest_config(Config { cases: 512, ..Config::default() })]
+    // A fixed seed: the same cases on every run, so a rare find cannot make CI flaky; the fuzzers
+    // are what explores.
+    #![proptest_config(Config { cases: 2000, rng_seed: RngSeed::Fixed(0xf022_9e0e), ..Config::default() })]
 
     #[test]
     fn convex_hull_from_fuzz_bytes(data in bytes(800)) {
@@ -120,6 +122,18 @@ fn fuzz_regression_narrow_phase_needle_cone_inside_cone() {
 fn fuzz_regression_narrow_phase_long_capsules_crossing_shallow() {
     let input: PairInput =
         from_bytes(include_bytes!("fuzz_regressions/narrow_phase_long_capsules_crossing_shallow.bin"))
+            .unwrap();
+    check_pair(&input);
+}
+
+/// Two 0.2 m-radius cylinders, rims crossing: A–B reports 0.3258 m of overlap, exactly what its
+/// normal gives; B–A's normal is the same to 1e-3, but its clipped points report 0.3173 m, 2.6%
+/// less. Open: the clipped manifold of cylinder rims loses a little depth.
+#[test]
+#[ignore = "open: a cylinder-rim manifold reports 2.6% less overlap than its normal shows (0.3173 m of 0.3258 m)"]
+fn fuzz_regression_narrow_phase_cylinder_rim_manifold_shallow() {
+    let input: PairInput =
+        from_bytes(include_bytes!("fuzz_regressions/narrow_phase_cylinder_rim_manifold_shallow.bin"))
             .unwrap();
     check_pair(&input);
 }
