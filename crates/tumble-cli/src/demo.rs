@@ -23,9 +23,15 @@ pub fn run_demo(out: &Path) -> Result<String, String> {
     };
     let scene =
         Scene::from_str_with_meshes(DEMO_SCENE, DEMO_PATH, &mut embedded).map_err(|e| e.to_string())?;
-    let options =
-        RunOptions { out: out.to_owned(), every: 1, duration: scene.duration, dt: scene.dt, threads: 1 };
-    let summary = run_scene(&scene, &options).map_err(|e| e.to_string())?;
+    let options = RunOptions {
+        out: out.to_owned(),
+        every: 1,
+        duration: scene.duration,
+        dt: scene.dt,
+        threads: 1,
+        checkpoint: None,
+    };
+    let summary = run_scene(&scene, &options)?;
     Ok(format!(
         "Tumble demo: a T-handle spinning about its intermediate axis in zero gravity flips over\n\
          and back every few seconds (the Dzhanibekov effect). Plot qx..qw from the recording to see it.\n\n{}",

@@ -3,7 +3,9 @@
 //! ```text
 //! tumble                      run the built-in demo (same as `tumble demo`)
 //! tumble demo [--out FILE]    T-handle flipping in zero gravity → out/demo.csv
-//! tumble run SCENE [--out FILE.csv] [--every N] [--duration S] [--dt S] [--profile]
+//! tumble run SCENE [--out FILE.csv] [--every N] [--duration S] [--dt S] [--profile] [--threads N]
+//!                  [--checkpoint FILE [--checkpoint-every N]]
+//! tumble run --resume FILE    carry on a killed run from its checkpoint
 //! tumble bench NAME [--threads N] [--steps N] [--runs N] [--size N] [--json]
 //! tumble mass MESH [--density D]      mass properties of an OBJ/STL as JSON
 //! tumble view SCENE.toml | REC.csv --scene SCENE.toml [-o out.html]   a page that plays it in 3D
@@ -14,6 +16,7 @@
 //! message for bad input.
 
 mod bench;
+mod checkpoint;
 mod demo;
 mod export;
 mod mass;
@@ -53,7 +56,8 @@ enum Command {
     /// Run a scene file, record it to CSV and print a summary with conservation checks.
     Run {
         /// The scene (TOML).
-        scene: PathBuf,
+        #[arg(required_unless_present = "resume")]
+        scene: Option<PathBuf>,
         /// Where to write the recording [default: out/<scene name>.csv].
         #[arg(long, value_name = "FILE.csv")]
         out: Option<PathBuf>,
@@ -66,6 +70,18 @@ enum Command {
         /// Time step in seconds, overriding the scene's `world.dt`.
         #[arg(long, value_name = "S", allow_negative_numbers = true)]
         dt: Option<f64>,
+        /// Write a checkpoint to FILE every --checkpoint-every steps, replacing it atomically (a
+        /// kill at any moment leaves the previous one whole); `--resume FILE` carries the run on.
+        #[arg(long, value_name = "FILE")]
+        checkpoint: Option<PathBuf>,
+        /// Steps between checkpoints.
+        #[arg(long, value_name = "N", default_value_t = 1000, requires = "checkpoint", value_parser = clap::value_parser!(u64).range(1..))]
+        checkpoint_every: u64,
+        /// Carry on the run that wrote checkpoint FILE: its recording is cut back to the frames the
+        /// checkpoint covers and continued, to the same bytes an uninterrupted run writes; new
+        /// checkpoints go to FILE.
+        #[arg(long, value_name = "FILE", conflicts_with_all = ["scene", "out", "every", "duration", "dt", "checkpoint", "checkpoint_every", "profile", "threads"])]
+        resume: Option<PathBuf>,
         /// Print the wall time of each step phase (broad phase, narrow phase, solve, ...), summed
         /// over the run. SCENE may also name a built-in benchmark scene (see `tumble bench`),
         /// which is run for its step count (or --duration) without a recording.
@@ -177,15 +193,36 @@ fn main() -> ExitCode {
     let result = match cli.command {
         None => demo::run_demo(&PathBuf::from(demo::DEFAULT_OUT)),
         Some(Command::Demo { out }) => demo::run_demo(&out),
-        Some(Command::Run { scene, out, every, duration, dt, profile, threads }) => {
-            let name = scene.to_string_lossy();
-            if !scene.exists() && tumble::scenes::NAMES.contains(&name.as_ref()) {
-                // A built-in scene runs its own step count, or as many steps as cover --duration.
-                let steps = duration.map(|d| run::step_count(d.max(0.0), tumble::scenes::DT) as u32);
-                let options = bench::BenchOptions { threads, steps, runs: 1, size: None, json: false };
-                bench::profile(&name, &options)
-            } else {
-                run::run_scene_file(&scene, out, every, duration, dt, profile, threads)
+        Some(Command::Run {
+            scene,
+            out,
+            every,
+            duration,
+            dt,
+            profile,
+            threads,
+            checkpoint,
+            checkpoint_every,
+            resume,
+        }) => {
+            match (resume, scene) {
+                (Some(resume), _) => run::resume_from_checkpoint(&resume),
+                (None, Some(scene)) => {
+                    let name = scene.to_string_lossy();
+                    if !scene.exists() && tumble::scenes::NAMES.contains(&name.as_ref()) {
+                        // A built-in scene runs its own step count, or as many steps as cover
+                        // --duration.
+                        let steps = duration.map(|d| run::step_count(d.max(0.0), tumble::scenes::DT) as u32);
+                        let options =
+                            bench::BenchOptions { threads, steps, runs: 1, size: None, json: false };
+                        bench::profile(&name, &options)
+                    } else {
+                        let checkpoint =
+                            checkpoint.map(|path| run::Checkpointing { path, every: checkpoint_every });
+                        run::run_scene_file(&scene, out, every, duration, dt, profile, threads, checkpoint)
+                    }
+                }
+                (None, None) => Err("give a scene to run, or --resume CHECKPOINT".into()),
             }
         }
         Some(Command::Bench { scene, threads, steps, runs, size, json, export: Some(path) }) => {

@@ -17,6 +17,8 @@ use std::time::{Duration, Instant};
 use tumble::{BodyKind, DVec3, World};
 use tumble_io::{IoError, RecordingWriter, Scene};
 
+use crate::checkpoint::{self, Drift, RunState};
+
 pub struct RunOptions {
     pub out: PathBuf,
     pub every: u64,
@@ -24,6 +26,14 @@ pub struct RunOptions {
     pub dt: f64,
     /// Threads for the collision pipeline.
     pub threads: usize,
+    pub checkpoint: Option<Checkpointing>,
+}
+
+/// Where and how often a run writes checkpoints (`checkpoint.rs`).
+pub struct Checkpointing {
+    pub path: PathBuf,
+    /// Steps between checkpoints, >= 1.
+    pub every: u64,
 }
 
 /// What a run did and how well it conserved what it should.
@@ -36,6 +46,8 @@ pub struct Summary {
     /// Dynamic bodies awake / asleep at the end of the run.
     pub awake: usize,
     pub sleeping: usize,
+    /// Bodies taken out of the simulation because their state became non-finite.
+    pub isolated: usize,
     pub steps: u64,
     pub dt: f64,
     pub simulated_time: f64,
@@ -64,6 +76,7 @@ impl Summary {
             "scene:                  {scene_label}\n\
              bodies:                 {} ({} awake, {} sleeping at the end), {} joint{}\n\
              contacts:               {}  touching manifolds at the end\n\
+             {}\
              steps:                  {} (dt {} s)\n\
              simulated time:         {} s\n\
              wall time:              {:.3} s\n\
@@ -78,6 +91,14 @@ impl Summary {
             self.joints,
             if self.joints == 1 { "" } else { "s" },
             self.contacts,
+            if self.isolated > 0 {
+                format!(
+                    "isolated:               {}  bodies whose state became non-finite (left out)\n",
+                    self.isolated
+                )
+            } else {
+                String::new()
+            },
             self.steps,
             self.dt,
             short(self.simulated_time),
@@ -107,6 +128,7 @@ fn short(x: f64) -> String {
 }
 
 /// `tumble run`: read, check overrides, run.
+#[allow(clippy::too_many_arguments)]
 pub fn run_scene_file(
     path: &Path,
     out: Option<PathBuf>,
@@ -115,6 +137,7 @@ pub fn run_scene_file(
     dt: Option<f64>,
     profile: bool,
     threads: usize,
+    checkpoint: Option<Checkpointing>,
 ) -> Result<String, String> {
     let scene = Scene::from_file(path).map_err(|e| e.to_string())?;
     if let Some(dt) = dt.filter(|&dt| !(dt.is_finite() && dt > 0.0)) {
@@ -133,6 +156,7 @@ pub fn run_scene_file(
         duration: duration.unwrap_or(scene.duration),
         dt: dt.unwrap_or(scene.dt),
         threads,
+        checkpoint,
     };
     let summary = run_scene(&scene, &options).map_err(|e| e.to_string())?;
     let mut text = summary.render(&path.display().to_string());
@@ -140,6 +164,18 @@ pub fn run_scene_file(
         text.push_str(&format!("\n{}\n", summary.profile));
     }
     Ok(text)
+}
+
+/// `tumble run --resume FILE`: carries on the run that wrote the checkpoint `FILE`, cutting its
+/// recording back to what the checkpoint covers, and checkpointing to `FILE` as before.
+pub fn resume_from_checkpoint(path: &Path) -> Result<String, String> {
+    let (mut run, mut world) = checkpoint::read(path)?;
+    let mut recording =
+        RecordingWriter::resume(&run.out_absolute, run.every, run.frames, run.recording_bytes)
+            .map_err(|e| format!("resuming from checkpoint {}: {e}", path.display()))?;
+    let checkpointing = (run.checkpoint_every > 0).then_some(path);
+    let summary = run_loop(&mut world, &mut run, &mut recording, checkpointing)?;
+    Ok(summary.render(&run.scene.display().to_string()))
 }
 
 /// Number of steps to cover `duration`: rounds when `duration / dt` is an integer up to
@@ -163,52 +199,98 @@ fn gravity_force(world: &World) -> DVec3 {
         .sum()
 }
 
-pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<Summary, IoError> {
-    let mut built = scene.build_world()?;
+pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<Summary, String> {
+    let mut built = scene.build_world().map_err(|e| e.to_string())?;
     let world = &mut built.world;
-    world.set_threads(options.threads).map_err(|e| IoError::AtLine {
-        path: scene.path.clone(),
-        line: 1,
-        message: e.to_string(),
-    })?;
-    let steps = step_count(options.duration, options.dt);
-    let mut recording = RecordingWriter::create(&options.out, options.every)?;
-    recording.write_frame(world)?;
+    world.set_threads(options.threads).map_err(|e| format!("{}: {e}", scene.path.display()))?;
+    let mut recording = RecordingWriter::create(&options.out, options.every).map_err(|e| e.to_string())?;
+    recording.write_frame(world).map_err(|e| e.to_string())?;
 
-    let energy = |w: &World| w.kinetic_energy() + w.potential_energy();
-    let e0 = energy(world);
-    let l0 = world.angular_momentum_about_com();
-    let p0 = world.linear_momentum();
-    let weight = gravity_force(world);
-    let (mut max_de, mut max_dl, mut max_dp) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let energy = energy(world);
+    let out_absolute =
+        std::path::absolute(&options.out).map_err(|e| format!("{}: {e}", options.out.display()))?;
+    let mut run = RunState {
+        scene: scene.path.clone(),
+        bodies: built.bodies.len(),
+        out: options.out.clone(),
+        out_absolute,
+        every: options.every,
+        dt: options.dt,
+        steps: world.step_count() + step_count(options.duration, options.dt),
+        checkpoint_every: options.checkpoint.as_ref().map_or(0, |c| c.every),
+        frames: recording.frames_written(),
+        recording_bytes: recording.bytes_written(),
+        drift: Drift {
+            e0: energy,
+            l0: world.angular_momentum_about_com(),
+            p0: world.linear_momentum(),
+            weight: gravity_force(world),
+            max_de: 0.0,
+            max_dl: 0.0,
+            max_dp: 0.0,
+        },
+        wall_seconds: 0.0,
+    };
+    let checkpoint_path = options.checkpoint.as_ref().map(|c| c.path.as_path());
+    run_loop(world, &mut run, &mut recording, checkpoint_path)
+}
 
+/// E = kinetic + gravitational potential.
+fn energy(world: &World) -> f64 {
+    world.kinetic_energy() + world.potential_energy()
+}
+
+/// Steps `world` until `run.steps`, recording, measuring drift and writing checkpoints to
+/// `checkpoint` every `run.checkpoint_every` steps; then the summary.
+fn run_loop(
+    world: &mut World,
+    run: &mut RunState,
+    recording: &mut RecordingWriter,
+    checkpoint: Option<&Path>,
+) -> Result<Summary, String> {
+    let io = |e: IoError| e.to_string();
     let start = Instant::now();
     let show_progress = std::io::stderr().is_terminal();
     let mut progress: Option<indicatif::ProgressBar> = None;
-    for step in 0..steps {
-        world.step(options.dt)?;
-        recording.record_step(world)?;
+    let first_step = world.step_count();
+    while world.step_count() < run.steps {
+        world.step(run.dt).map_err(|e| e.to_string())?;
+        recording.record_step(world).map_err(io)?;
+        let step = world.step_count();
 
         let e = energy(world);
         if !e.is_finite() {
             return Err(IoError::AtLine {
-                path: scene.path.clone(),
+                path: run.scene.clone(),
                 line: 1,
                 message: format!(
-                    "the simulation blew up: energy became {e} at t = {} s (step {}); try a smaller dt",
+                    "the simulation blew up: energy became {e} at t = {} s (step {step}); try a smaller dt",
                     world.time(),
-                    step + 1
                 ),
-            });
+            }
+            .to_string());
         }
-        max_de = max_de.max((e - e0).abs());
-        max_dl = max_dl.max((world.angular_momentum_about_com() - l0).length());
-        max_dp = max_dp.max((world.linear_momentum() - p0 - weight * world.time()).length());
+        let drift = &mut run.drift;
+        drift.max_de = drift.max_de.max((e - drift.e0).abs());
+        drift.max_dl = drift.max_dl.max((world.angular_momentum_about_com() - drift.l0).length());
+        drift.max_dp =
+            drift.max_dp.max((world.linear_momentum() - drift.p0 - drift.weight * world.time()).length());
+
+        if let Some(path) = checkpoint.filter(|_| step.is_multiple_of(run.checkpoint_every.max(1))) {
+            // The recording must be on disk up to the point the checkpoint says it is.
+            recording.sync().map_err(io)?;
+            run.frames = recording.frames_written();
+            run.recording_bytes = recording.bytes_written();
+            let wall_before = run.wall_seconds;
+            run.wall_seconds += start.elapsed().as_secs_f64();
+            checkpoint::write(path, run, world)?;
+            run.wall_seconds = wall_before;
+        }
 
         // A bar only for runs long enough to wonder about, and only for a person watching.
-        if show_progress && step % 256 == 0 {
+        if show_progress && (step - first_step) % 256 == 1 {
             if progress.is_none() && start.elapsed() > Duration::from_secs(1) {
-                let bar = indicatif::ProgressBar::new(steps);
+                let bar = indicatif::ProgressBar::new(run.steps);
                 bar.set_style(
                     indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  eta {eta}")
                         .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
@@ -216,40 +298,42 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<Summary, IoError
                 progress = Some(bar);
             }
             if let Some(bar) = &progress {
-                bar.set_position(step + 1);
+                bar.set_position(step);
             }
         }
     }
     if let Some(bar) = progress {
         bar.finish_and_clear();
     }
-    let wall_time = start.elapsed();
+    let wall_time = Duration::from_secs_f64(run.wall_seconds) + start.elapsed();
     let frames = recording.frames_written();
-    recording.finish()?;
 
+    let drift = &run.drift;
     let relative = |drift: f64, scale: f64| if scale > 0.0 { (drift / scale, true) } else { (drift, false) };
-    let (energy_drift, energy_relative) = relative(max_de, e0.abs());
-    let (angular_momentum_drift, angular_momentum_relative) = relative(max_dl, l0.length());
+    let (energy_drift, energy_relative) = relative(drift.max_de, drift.e0.abs());
+    let (angular_momentum_drift, angular_momentum_relative) = relative(drift.max_dl, drift.l0.length());
     let dynamic = world.bodies().filter(|(_, b)| b.kind() == BodyKind::Dynamic).count();
     let awake = world.awake_body_count();
+    let isolated = world.isolated_bodies().count();
     Ok(Summary {
-        bodies: built.bodies.len(),
+        bodies: run.bodies,
         joints: world.joint_count(),
         contacts: world.contact_count(),
         awake,
-        sleeping: dynamic - awake,
-        steps,
-        dt: options.dt,
+        sleeping: dynamic - awake - isolated,
+        isolated,
+        steps: world.step_count(),
+        dt: run.dt,
         simulated_time: world.time(),
         wall_time,
         energy_drift,
         energy_relative,
         angular_momentum_drift,
         angular_momentum_relative,
-        linear_momentum_drift: max_dp,
-        out: options.out.clone(),
+        linear_momentum_drift: drift.max_dp,
+        out: run.out.clone(),
         frames,
-        every: options.every,
+        every: run.every,
         profile: *world.profile(),
     })
 }

@@ -7,11 +7,16 @@
 //! - `vx,vy,vz`: velocity of the centre of mass; `wx,wy,wz`: angular velocity, world frame.
 //!
 //! Numbers are written with Rust's shortest round-trip formatting, so reading a recording back
-//! gives the simulated values bit for bit (tests rely on it; so can anyone comparing runs). Every
-//! frame is flushed when written: a run that is killed leaves a file of whole frames.
+//! gives the simulated values bit for bit (tests rely on it; so can anyone comparing runs).
+//!
+//! Every frame is built in memory and handed to the file in one `write` call, then flushed: a run
+//! that is killed leaves a file of whole frames (a regular file's write is not cut short by a
+//! signal). Only a crash of the machine itself can leave part of a frame; resuming from a
+//! checkpoint ([`RecordingWriter::resume`]) cuts the file back to the frames the checkpoint covers
+//! either way.
 
 use std::fs::File;
-use std::io::{BufWriter, Read, Write};
+use std::io::{Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use tumble::{DQuat, DVec3, World};
@@ -24,14 +29,28 @@ pub const RECORDING_HEADER: &str = "t,body,px,py,pz,qx,qy,qz,qw,vx,vy,vz,wx,wy,w
 const COLUMNS: usize = 15;
 
 /// Writes a recording, one frame at a time.
-pub struct RecordingWriter<W: Write = BufWriter<File>> {
-    csv: csv::Writer<W>,
+pub struct RecordingWriter<W: Write = File> {
+    /// One frame (or the header), formatted in memory before it goes to `out` in one piece.
+    frame: Vec<u8>,
+    out: W,
     path: PathBuf,
     every: u64,
     frames: u64,
+    /// Bytes handed to `out` so far: the header and whole frames.
+    bytes: u64,
 }
 
-impl RecordingWriter<BufWriter<File>> {
+fn invalid_every(path: &Path, every: u64) -> Result<(), IoError> {
+    if every == 0 {
+        return Err(IoError::file(
+            path,
+            std::io::Error::new(std::io::ErrorKind::InvalidInput, "`every` must be >= 1"),
+        ));
+    }
+    Ok(())
+}
+
+impl RecordingWriter<File> {
     /// Creates (or truncates) `path`, creating its folder if needed, and writes the header.
     /// `every`: [`RecordingWriter::record_step`] writes a frame every `every` steps (>= 1).
     pub fn create(path: impl AsRef<Path>, every: u64) -> Result<Self, IoError> {
@@ -39,8 +58,42 @@ impl RecordingWriter<BufWriter<File>> {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|e| IoError::file(dir, e))?;
         }
+        invalid_every(path, every)?;
         let file = File::create(path).map_err(|e| IoError::file(path, e))?;
-        RecordingWriter::new(BufWriter::new(file), every, path)
+        RecordingWriter::new(file, every, path)
+    }
+
+    /// Reopens a recording to continue it: cuts `path` back to its first `bytes` bytes (the
+    /// header and `frames` whole frames, as [`RecordingWriter::bytes_written`] and
+    /// [`RecordingWriter::frames_written`] reported them) and appends from there. An error if the
+    /// file is shorter than that.
+    pub fn resume(path: impl AsRef<Path>, every: u64, frames: u64, bytes: u64) -> Result<Self, IoError> {
+        let path = path.as_ref();
+        invalid_every(path, every)?;
+        let mut file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open(path)
+            .map_err(|e| IoError::file(path, e))?;
+        let len = file.metadata().map_err(|e| IoError::file(path, e))?.len();
+        if len < bytes {
+            return Err(IoError::file(
+                path,
+                std::io::Error::new(
+                    std::io::ErrorKind::UnexpectedEof,
+                    format!("the recording holds {len} bytes, fewer than the {bytes} it had when the checkpoint was written"),
+                ),
+            ));
+        }
+        file.set_len(bytes).map_err(|e| IoError::file(path, e))?;
+        file.seek(SeekFrom::End(0)).map_err(|e| IoError::file(path, e))?;
+        Ok(Self { frame: Vec::new(), out: file, path: path.to_owned(), every, frames, bytes })
+    }
+
+    /// Makes what was written so far durable (`fsync`), so a checkpoint that counts on it can be
+    /// written after.
+    pub fn sync(&self) -> Result<(), IoError> {
+        self.out.sync_data().map_err(|e| IoError::file(&self.path, e))
     }
 }
 
@@ -48,48 +101,60 @@ impl<W: Write> RecordingWriter<W> {
     /// Writes the header to `writer`; `path` names it in messages.
     pub fn new(writer: W, every: u64, path: impl AsRef<Path>) -> Result<Self, IoError> {
         let path = path.as_ref().to_owned();
-        if every == 0 {
-            return Err(IoError::file(
-                &path,
-                std::io::Error::new(std::io::ErrorKind::InvalidInput, "`every` must be >= 1"),
-            ));
-        }
-        // The csv writer's own buffer is flushed per frame, so it adds no loss on a kill.
-        let mut csv = csv::WriterBuilder::new().has_headers(false).from_writer(writer);
-        csv.write_record(RECORDING_HEADER.split(',')).map_err(|e| csv_error(&path, e))?;
-        csv.flush().map_err(|e| IoError::file(&path, e))?;
-        Ok(Self { csv, path, every, frames: 0 })
+        invalid_every(&path, every)?;
+        let mut recording = Self { frame: Vec::new(), out: writer, path, every, frames: 0, bytes: 0 };
+        recording.emit(|csv| csv.write_record(RECORDING_HEADER.split(',')))?;
+        Ok(recording)
+    }
+
+    /// Formats rows with `rows` into the frame buffer, then hands them to the output in one piece
+    /// and flushes it.
+    fn emit(
+        &mut self,
+        rows: impl FnOnce(&mut csv::Writer<&mut Vec<u8>>) -> Result<(), csv::Error>,
+    ) -> Result<(), IoError> {
+        self.frame.clear();
+        let mut csv = csv::WriterBuilder::new().has_headers(false).from_writer(&mut self.frame);
+        rows(&mut csv).map_err(|e| csv_error(&self.path, e))?;
+        csv.flush().map_err(|e| IoError::file(&self.path, e))?;
+        drop(csv);
+        self.out.write_all(&self.frame).map_err(|e| IoError::file(&self.path, e))?;
+        self.out.flush().map_err(|e| IoError::file(&self.path, e))?;
+        self.bytes += self.frame.len() as u64;
+        Ok(())
     }
 
     /// Writes the world's current state as one frame (every body, in the world's order) and
     /// flushes it.
     pub fn write_frame(&mut self, world: &World) -> Result<(), IoError> {
-        let t = num(world.time());
-        for (_, body) in world.bodies() {
-            let p = body.position();
-            let q = body.orientation();
-            let v = body.linear_velocity();
-            let w = body.angular_velocity();
-            let row = [
-                t.clone(),
-                body.name().to_string(),
-                num(p.x),
-                num(p.y),
-                num(p.z),
-                num(q.x),
-                num(q.y),
-                num(q.z),
-                num(q.w),
-                num(v.x),
-                num(v.y),
-                num(v.z),
-                num(w.x),
-                num(w.y),
-                num(w.z),
-            ];
-            self.csv.write_record(&row).map_err(|e| csv_error(&self.path, e))?;
-        }
-        self.csv.flush().map_err(|e| IoError::file(&self.path, e))?;
+        self.emit(|csv| {
+            let t = num(world.time());
+            for (_, body) in world.bodies() {
+                let p = body.position();
+                let q = body.orientation();
+                let v = body.linear_velocity();
+                let w = body.angular_velocity();
+                let row = [
+                    t.clone(),
+                    body.name().to_string(),
+                    num(p.x),
+                    num(p.y),
+                    num(p.z),
+                    num(q.x),
+                    num(q.y),
+                    num(q.z),
+                    num(q.w),
+                    num(v.x),
+                    num(v.y),
+                    num(v.z),
+                    num(w.x),
+                    num(w.y),
+                    num(w.z),
+                ];
+                csv.write_record(&row)?;
+            }
+            Ok(())
+        })?;
         self.frames += 1;
         Ok(())
     }
@@ -109,14 +174,19 @@ impl<W: Write> RecordingWriter<W> {
         self.frames
     }
 
+    /// Bytes written so far: the header and every whole frame.
+    pub fn bytes_written(&self) -> u64 {
+        self.bytes
+    }
+
     pub fn path(&self) -> &Path {
         &self.path
     }
 
     /// Flushes and hands back the underlying writer.
-    pub fn finish(self) -> Result<W, IoError> {
-        let path = self.path;
-        self.csv.into_inner().map_err(|e| IoError::file(&path, e.into_error()))
+    pub fn finish(mut self) -> Result<W, IoError> {
+        self.out.flush().map_err(|e| IoError::file(&self.path, e))?;
+        Ok(self.out)
     }
 }
 

@@ -96,6 +96,40 @@ fn file_recording_has_the_exact_header_and_whole_frames() {
 }
 
 #[test]
+fn resume_cuts_back_to_the_checkpoint_and_continues_byte_for_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let (straight, resumed) = (dir.path().join("straight.csv"), dir.path().join("resumed.csv"));
+    let mut world = world();
+    let mut writer = RecordingWriter::create(&straight, 1).unwrap();
+    writer.write_frame(&world).unwrap();
+    let mut at_checkpoint = None;
+    for step in 0..4 {
+        world.step(0.01).unwrap();
+        writer.record_step(&world).unwrap();
+        if step == 1 {
+            at_checkpoint = Some((world.clone(), writer.frames_written(), writer.bytes_written()));
+        }
+    }
+    drop(writer);
+    let (mut world, frames, bytes) = at_checkpoint.unwrap();
+    assert_eq!(bytes, std::fs::read(&straight).unwrap()[..bytes as usize].len() as u64);
+    // What a killed run left: the frames after the checkpoint and part of one more line.
+    let mut left = std::fs::read(&straight).unwrap();
+    left.extend_from_slice(b"0.05,brick,1.0");
+    std::fs::write(&resumed, left).unwrap();
+    let mut writer = RecordingWriter::resume(&resumed, 1, frames, bytes).unwrap();
+    for _ in 2..4 {
+        world.step(0.01).unwrap();
+        writer.record_step(&world).unwrap();
+    }
+    assert_eq!(writer.frames_written(), 5);
+    drop(writer);
+    assert_eq!(std::fs::read(&resumed).unwrap(), std::fs::read(&straight).unwrap());
+    let short = RecordingWriter::resume(dir.path().join("straight.csv"), 1, 99, 1 << 30).err().unwrap();
+    assert!(short.to_string().contains("straight.csv"), "{short}");
+}
+
+#[test]
 fn bad_recordings_are_errors_with_a_line() {
     let bad_header = Recording::from_reader("t,body,x\n".as_bytes(), "r.csv").unwrap_err().to_string();
     assert!(bad_header.starts_with("r.csv:1: not a recording"), "{bad_header}");

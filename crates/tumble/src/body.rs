@@ -145,6 +145,8 @@ pub struct Body {
     pub(crate) sleep_time: f64,
     /// `Some(island)` while asleep: the island (named by its lowest body slot) it sleeps with.
     pub(crate) sleeping_island: Option<u32>,
+    /// Taken out of the simulation because its state became non-finite (`non_finite.rs`).
+    pub(crate) isolated: bool,
 }
 
 impl Body {
@@ -183,6 +185,7 @@ impl Body {
             proxies: Vec::new(),
             sleep_time: 0.0,
             sleeping_island: None,
+            isolated: false,
         }
     }
 
@@ -312,6 +315,13 @@ impl Body {
     /// False while the body sleeps (it is then not simulated until something wakes it).
     pub fn is_awake(&self) -> bool {
         self.sleeping_island.is_none()
+    }
+
+    /// True once the step took the body out of the simulation because its state became
+    /// non-finite: it stands still where it last was finite and touches nothing
+    /// (`World::isolated_bodies`).
+    pub fn is_isolated(&self) -> bool {
+        self.isolated
     }
 
     /// Velocity of the material point now at `point_world`: `v + ω × r`, r from the centre of mass.

@@ -13,6 +13,7 @@ pub mod id;
 pub mod integrate;
 pub mod mass;
 pub mod math;
+pub mod non_finite;
 pub mod profile;
 pub mod query;
 pub mod scenes;
@@ -34,6 +35,7 @@ pub use events::BodyPair;
 pub use id::{BodyId, JointId};
 pub use mass::{MassError, MassProperties, PrincipalFrame};
 pub use math::{DMat3, DQuat, DVec3, Transform};
+pub use non_finite::NonFiniteBody;
 pub use query::{QueryError, QueryFilter, RayCastHit};
 pub use shape::{
     Capsule, Compound, CompoundChild, Cone, ConvexHull, Cuboid, Cylinder, HeightField, HullError, Plane,

@@ -3,7 +3,7 @@
 //! comparing a restored world with the original.
 //!
 //! The hash is FNV-1a over the exact bit patterns of: time and step count; every body's slot,
-//! generation, kind, sleep state and timer, centre of mass, rotation and velocities, and pending
+//! generation, kind, sleep state and timer, isolation, centre of mass, rotation and velocities, and pending
 //! force and torque; every joint's slot, generation, broken flag and last constraint force and torque; every contact's body pair,
 //! manifold points and warm-start impulses. FNV-1a is written out here (not `std`'s hasher, whose
 //! algorithm may change between Rust releases) so hashes stay comparable across builds.
@@ -59,6 +59,7 @@ impl World {
             h.u64(u64::from(crate::id::BodyId::from(id).generation()));
             h.u64(body.kind as u64);
             h.u64(body.sleeping_island.map_or(u64::MAX, u64::from));
+            h.u64(u64::from(body.isolated));
             h.f64(body.sleep_time);
             let s = &body.state;
             h.vec(s.com_world);

@@ -1,6 +1,10 @@
 //! `World::step`: the phases of one time step, in order. This file reads as the table of contents
 //! of the pipeline in DESIGN.md; each phase lives in its own module. Each phase's wall time is
 //! added to the world's profile (`profile.rs`).
+//!
+//! The pipeline: broad and narrow phase, waking, the non-finite check, the soft-step solve
+//! (forces, gravity, contacts, joints, exact rotation update, in substeps), the check again, sleep,
+//! then accumulators are cleared.
 
 use std::time::Instant;
 
@@ -38,8 +42,14 @@ impl World {
         self.wake_islands_touched_by_awake_bodies();
         self.profile.lap(Phase::Wake, &mut clock);
 
+        // Bodies whose numbers would overflow leave the simulation before they can spread NaN
+        // through contacts and joints; after the solve, anything non-finite that got through
+        // goes back to its last finite state and leaves too (non_finite.rs).
+        self.isolate_bodies_about_to_overflow(dt);
+
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
         self.solve(dt);
+        self.isolate_non_finite_bodies();
         self.profile.lap(Phase::Solve, &mut clock);
 
         // Move the proxies of the bodies that moved, so queries between steps see the current

@@ -91,6 +91,12 @@ pub struct World {
     /// Buffers the step refills each time, kept to reuse their allocations.
     #[serde(skip)]
     pub(crate) scratch: crate::dynamics::island::IslandScratch,
+    /// Bodies the last step isolated for non-finite state (`non_finite.rs`).
+    pub(crate) non_finite_events: Vec<crate::non_finite::NonFiniteBody>,
+    /// Each simulated body's slot and state at the start of the step, kept between steps to reuse
+    /// the allocation (`non_finite.rs`).
+    #[serde(skip)]
+    pub(crate) step_start_states: Vec<(usize, crate::body::BodyState)>,
 }
 
 impl Default for World {
@@ -161,6 +167,8 @@ impl World {
             profile: Default::default(),
             pool: None,
             scratch: Default::default(),
+            non_finite_events: Vec::new(),
+            step_start_states: Vec::new(),
         })
     }
 

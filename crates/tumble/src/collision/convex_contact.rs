@@ -72,6 +72,14 @@ pub fn collide_convex(
     } else {
         None
     };
+    // Clipping keeps the part of the incident feature over the reference face; when the deepest
+    // part lies beyond that face (a needle cone deep inside a wide one), the points left can be
+    // far shallower than the overlap GJK/EPA measured. A manifold must not hide depth from the
+    // solver: keep the one exact point instead.
+    let clipped = clipped.filter(|m| {
+        let shallowest_allowed = separation + 0.5 * (-separation).max(0.0) + 1e-6 * scale;
+        m.points().iter().map(|p| p.separation).fold(f64::INFINITY, f64::min) <= shallowest_allowed
+    });
     clipped.or_else(|| {
         // One point: midway between the two surfaces.
         let on_a = point_a + normal * a.radius;

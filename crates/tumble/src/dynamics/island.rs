@@ -147,7 +147,7 @@ impl World {
         let n = self.bodies.capacity_index();
         // Bodies that can never sleep keep their island awake: their timer stays at zero.
         for (_, body) in self.bodies.iter_mut() {
-            if body.kind != BodyKind::Dynamic || body.sleeping_island.is_some() {
+            if body.kind != BodyKind::Dynamic || body.sleeping_island.is_some() || body.isolated {
                 continue;
             }
             let resting = body.state.linear_velocity.length() < settings.linear_threshold
@@ -166,7 +166,7 @@ impl World {
             world
                 .bodies
                 .iter_slot(i as usize)
-                .is_some_and(|b| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none())
+                .is_some_and(|b| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none() && !b.isolated)
         };
         for &(a, b) in scratch.contact_links.iter().chain(&scratch.joint_links) {
             if is_linkable(self, a) && is_linkable(self, b) {
@@ -178,13 +178,13 @@ impl World {
         min_sleep.clear();
         min_sleep.resize(n, f64::INFINITY);
         for (id, body) in self.bodies.iter() {
-            if body.kind == BodyKind::Dynamic && body.sleeping_island.is_none() {
+            if body.kind == BodyKind::Dynamic && body.sleeping_island.is_none() && !body.isolated {
                 let root = sets.find(id.index() as u32) as usize;
                 min_sleep[root] = min_sleep[root].min(body.sleep_time);
             }
         }
         for (id, body) in self.bodies.iter_mut() {
-            if body.kind == BodyKind::Dynamic && body.sleeping_island.is_none() {
+            if body.kind == BodyKind::Dynamic && body.sleeping_island.is_none() && !body.isolated {
                 let root = sets.find(id.index() as u32);
                 if min_sleep[root as usize] >= settings.time_to_sleep {
                     body.sleeping_island = Some(root);
@@ -196,9 +196,12 @@ impl World {
         self.scratch = scratch;
     }
 
-    /// Number of dynamic bodies awake.
+    /// Number of dynamic bodies awake (isolated ones, `non_finite.rs`, are not simulated at all).
     pub fn awake_body_count(&self) -> usize {
-        self.bodies.iter().filter(|(_, b)| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none()).count()
+        self.bodies
+            .iter()
+            .filter(|(_, b)| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none() && !b.isolated)
+            .count()
     }
 }
 

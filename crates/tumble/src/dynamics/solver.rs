@@ -161,8 +161,9 @@ impl World {
         bodies.clear();
         bodies.resize(self.bodies.capacity_index(), SolverBody::FIXED);
         for (id, body) in self.bodies.iter() {
-            // Sleeping bodies stand still: they take part as fixed bodies, if at all.
-            if body.is_awake() {
+            // Sleeping bodies stand still: they take part as fixed bodies, if at all. Isolated
+            // bodies (non_finite.rs) have no contacts and broken joints: they take no part.
+            if body.is_awake() && !body.isolated {
                 bodies[id.index()] = SolverBody::from_body(body);
             }
         }
@@ -286,7 +287,7 @@ impl World {
             }
         }
         for (id, body) in self.bodies.iter_mut() {
-            if body.is_awake() {
+            if body.is_awake() && !body.isolated {
                 bodies[id.index()].write_back(body);
             }
         }

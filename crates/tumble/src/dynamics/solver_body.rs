@@ -67,12 +67,24 @@ impl SolverBody {
         }
     }
 
-    /// Writes the step's result back into the body.
+    /// Writes the step's result back into the body. Only a dynamic body's velocities are the
+    /// solver's to change: a static or kinematic body has infinite mass, so the impulses it takes
+    /// are multiplied by zero — which is NaN, not zero, when a diverging neighbour's impulse is
+    /// infinite. Writing them back would spread that NaN to the ground.
     pub fn write_back(&self, body: &mut Body) {
-        body.state.com_world += self.dp;
-        body.state.rotation = self.q;
-        body.state.linear_velocity = self.v;
-        body.state.angular_velocity = self.w;
+        match self.kind {
+            BodyKind::Static => {}
+            BodyKind::Kinematic => {
+                body.state.com_world += self.dp;
+                body.state.rotation = self.q;
+            }
+            BodyKind::Dynamic => {
+                body.state.com_world += self.dp;
+                body.state.rotation = self.q;
+                body.state.linear_velocity = self.v;
+                body.state.angular_velocity = self.w;
+            }
+        }
     }
 
     fn refresh_inverse_inertia(&mut self) {

@@ -44,13 +44,35 @@ impl MassProperties {
     pub fn from_mesh(vertices: &[DVec3], triangles: &[[u32; 3]], density: f64) -> Result<Self, MassError> {
         let density = positive("density", density)?;
         let integrals = checked_integrals(vertices, triangles)?;
+        Ok(Self::from_integrals(&integrals, density))
+    }
+
+    /// Mass properties of a convex hull from its faces fanned into triangles. The hull checked
+    /// itself when it was built (finite, closed, outward, with volume), so the mesh checks are
+    /// not repeated — in particular not the degenerate-triangle check: a face polygon that keeps
+    /// a vertex on one of its edges (within the hull's merge tolerance) fans into a zero-area
+    /// triangle, which adds nothing to the integrals and must not reject the hull.
+    pub(crate) fn from_hull_triangles(
+        vertices: &[DVec3],
+        triangles: &[[u32; 3]],
+        density: f64,
+    ) -> Result<Self, MassError> {
+        let density = positive("density", density)?;
+        if triangles.is_empty() {
+            return Err(MassError::EmptyMesh);
+        }
+        let integrals = oriented_integrals(vertices, triangles)?;
+        Ok(Self::from_integrals(&integrals, density))
+    }
+
+    fn from_integrals(integrals: &VolumeIntegrals, density: f64) -> Self {
         let (center_of_mass, inertia_per_density) = integrals.center_and_inertia();
-        Ok(MassProperties {
+        MassProperties {
             volume: integrals.volume,
             mass: density * integrals.volume,
             center_of_mass,
             inertia: inertia_per_density * density,
-        })
+        }
     }
 }
 
@@ -62,10 +84,16 @@ fn checked_integrals(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<Volum
     check_indices(vertices.len(), triangles)?;
     check_finite(vertices)?;
     let (lo, hi) = bounds(vertices, triangles);
-    let extent = hi - lo;
-    check_degenerate(vertices, triangles, extent.length_squared())?;
+    check_degenerate(vertices, triangles, (hi - lo).length_squared())?;
     check_closed_and_wound(triangles)?;
+    oriented_integrals(vertices, triangles)
+}
 
+/// The volume integrals of a closed, consistently wound mesh; an error unless its volume is
+/// positive (outward winding) and above round-off.
+fn oriented_integrals(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<VolumeIntegrals, MassError> {
+    let (lo, hi) = bounds(vertices, triangles);
+    let extent = hi - lo;
     // Integrate relative to the bounding-box centre: near the solid, so the second moments are
     // not swamped by m|c|² terms when the mesh sits far from the frame's origin.
     let integrals = VolumeIntegrals::compute(vertices, triangles, 0.5 * (lo + hi));

@@ -50,7 +50,9 @@ impl Shape {
             Shape::Capsule(s) => MassProperties::capsule(s.radius, s.half_height, density),
             Shape::Cylinder(s) => MassProperties::cylinder(s.radius, s.half_height, density),
             Shape::Cone(s) => MassProperties::cone(s.radius, s.half_height, density),
-            Shape::ConvexHull(h) => MassProperties::from_mesh(h.vertices(), &h.triangles(), density),
+            Shape::ConvexHull(h) => {
+                MassProperties::from_hull_triangles(h.vertices(), &h.triangles(), density)
+            }
             Shape::TriMesh(m) if !m.is_closed() => Err(MassError::StaticOnly {
                 what: "a static (possibly open) triangle mesh from TriMesh::new_static",
             }),
