@@ -94,7 +94,6 @@ struct PointConstraint {
     r_b_local: DVec3,
     /// Separation measured by the narrow phase at the start of the step.
     base_separation: f64,
-    normal_mass: f64,
     normal_impulse: f64,
     /// Low-pass of `normal_impulse` over substeps: the steady load (see `ContactConstraint::solve`).
     steady_normal_impulse: f64,
@@ -135,7 +134,6 @@ impl PointConstraint {
         r_a_local: DVec3::ZERO,
         r_b_local: DVec3::ZERO,
         base_separation: 0.0,
-        normal_mass: 0.0,
         normal_impulse: 0.0,
         steady_normal_impulse: 0.0,
         max_normal_impulse: 0.0,
@@ -198,7 +196,7 @@ pub(crate) struct ContactConstraint {
 
 impl ContactConstraint {
     /// Stage "prepare" for one manifold. `com_a`, `com_b` are the centres of mass at the step
-    /// start; `relax_static` selects the stiffer softness used against static bodies.
+    /// start; a manifold against a static or kinematic body gets the stiffer static softness.
     #[allow(clippy::too_many_arguments)]
     pub fn prepare(
         key: (ProxyKey, ProxyKey),
@@ -238,11 +236,7 @@ impl ContactConstraint {
                 - com_a;
             let r_b = input.point_world + if round.1 { 0.5 * input.separation * normal } else { DVec3::ZERO }
                 - com_b;
-            let k = crate::dynamics::joint::parts::point_mass_matrix(a, r_a)
-                + crate::dynamics::joint::parts::point_mass_matrix(b, r_b);
-            let kn = normal.dot(k * normal);
             let relative_velocity = normal.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
-            let normal_mass = if kn > 0.0 { 1.0 / kn } else { 0.0 };
             let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
             *pc = PointConstraint {
                 softness,
@@ -251,7 +245,6 @@ impl ContactConstraint {
                 r_a_local: a.q.inverse() * r_a,
                 r_b_local: b.q.inverse() * r_b,
                 base_separation: input.separation,
-                normal_mass,
                 normal_impulse: if ctx.warm_starting { input.impulse.normal } else { 0.0 },
                 steady_normal_impulse: if ctx.warm_starting { input.impulse.steady_normal } else { 0.0 },
                 max_normal_impulse: 0.0,
