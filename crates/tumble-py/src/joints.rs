@@ -79,11 +79,10 @@ fn def(a: BodyId, b: BodyId, anchor: DVec3, kind: JointKind, common: CommonArgs)
 /// optional swing cone (half-angle, rad) about `axis` and twist limits.
 pub fn ball_def(
     (a, b, anchor, axis): (BodyId, BodyId, DVec3, DVec3),
-    swing_limit: Option<f64>,
-    twist_limits: Option<Limits>,
+    (swing_limit, twist_limits, friction_torque): (Option<f64>, Option<Limits>, f64),
     common: CommonArgs,
 ) -> JointDef {
-    let kind = JointKind::Ball(BallJoint { swing_limit, twist_limits });
+    let kind = JointKind::Ball(BallJoint { swing_limit, twist_limits, friction_torque });
     JointDef { axis_world: axis, ..def(a, b, anchor, kind, common) }
 }
 
@@ -97,8 +96,13 @@ pub fn hinge_def(
     common: CommonArgs,
 ) -> PyResult<JointDef> {
     let (limits, motor, spring) = drive.parts()?;
-    let kind =
-        JointKind::Hinge(HingeJoint { limits, motor, spring, spring_target_angle: drive.spring_target });
+    let kind = JointKind::Hinge(HingeJoint {
+        limits,
+        motor,
+        spring,
+        spring_target_angle: drive.spring_target,
+        ..Default::default()
+    });
     Ok(JointDef { axis_world: axis, ..def(a, b, anchor, kind, common) })
 }
 

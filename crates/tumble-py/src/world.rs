@@ -210,9 +210,10 @@ impl World {
 
     /// Ball-and-socket joint: bodies `a` and `b` share the world point `anchor` (at creation).
     /// `swing_limit` (rad) bounds the angle between the bodies' `axis`; `twist_limits` (lower,
-    /// upper) the twist about it.
+    /// upper) the twist about it; `friction_torque` (N·m) resists relative rotation.
     #[pyo3(signature = (a, b, anchor, *, axis = None, swing_limit = None, twist_limits = None,
-        name = "", break_force = None, break_torque = None, collide_connected = false))]
+        friction_torque = 0.0, name = "", break_force = None, break_torque = None,
+        collide_connected = false))]
     #[allow(clippy::too_many_arguments)]
     fn add_ball_joint(
         &mut self,
@@ -222,6 +223,7 @@ impl World {
         axis: Option<&Bound<'_, PyAny>>,
         swing_limit: Option<f64>,
         twist_limits: Option<&Bound<'_, PyAny>>,
+        friction_torque: f64,
         name: &str,
         break_force: Option<f64>,
         break_torque: Option<f64>,
@@ -230,7 +232,11 @@ impl World {
         let common = CommonArgs { name: name.into(), break_force, break_torque, collide_connected };
         let axis = opt_vec3(axis, "axis")?.unwrap_or(DVec3::Z);
         let twist = joints::limits(twist_limits, "twist_limits")?;
-        let def = joints::ball_def((a, b, vec3(anchor, "anchor")?, axis), swing_limit, twist, common);
+        let def = joints::ball_def(
+            (a, b, vec3(anchor, "anchor")?, axis),
+            (swing_limit, twist, friction_torque),
+            common,
+        );
         Ok(JointId(self.inner.add_joint(def).py()?))
     }
 

@@ -76,6 +76,9 @@ pub struct World {
     /// The solver's contact rows, kept between steps to reuse the allocation.
     #[serde(skip)]
     pub(crate) contact_constraints: Vec<ContactConstraint>,
+    /// The step's joint trees (`dynamics/joint_tree/`), kept to reuse their allocations.
+    #[serde(skip)]
+    pub(crate) joint_trees: crate::dynamics::joint_tree::JointTrees,
     pub(crate) gravity: DVec3,
     pub(crate) time: f64,
     /// The low-order bits lost from `time` by the last addition (Kahan summation).
@@ -160,6 +163,7 @@ impl World {
             solver_bodies: Vec::new(),
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
+            joint_trees: Default::default(),
             gravity: check_vec("gravity", def.gravity)?,
             time: 0.0,
             time_compensation: 0.0,

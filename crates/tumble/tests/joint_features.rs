@@ -172,7 +172,7 @@ fn j5_ball_swing_and_twist_limits_hold() {
             ..Default::default()
         })
         .unwrap();
-    let ball = BallJoint { swing_limit: Some(0.3), twist_limits: Some(twist) };
+    let ball = BallJoint { swing_limit: Some(0.3), twist_limits: Some(twist), ..Default::default() };
     let j_twist = world.add_joint(JointDef::new(ground, wheel, top, JointKind::Ball(ball))).unwrap();
 
     let (mut max_swing, mut max_twist, mut min_twist) = (0.0_f64, f64::NEG_INFINITY, f64::INFINITY);

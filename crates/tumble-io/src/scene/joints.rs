@@ -15,7 +15,8 @@
 //! break_force = 1000.0        # N; break_torque in N·m
 //! collide_connected = false
 //! ```
-//! Ball joints take `swing_limit` (rad) and `twist_limits` ([lower, upper], rad); distance joints
+//! Ball joints take `swing_limit` (rad) and `twist_limits` ([lower, upper], rad); ball and hinge
+//! joints take `friction_torque` (N·m, default 0); distance joints
 //! take `anchor_b` (the anchor on body b; default `anchor`), `length`, `min_length`,
 //! `max_length` and `spring`. Each type rejects the keys of the others.
 
@@ -163,16 +164,23 @@ impl Checker<'_> {
             })
             .transpose()?;
         let target = opt("spring_target", &raw.spring_target, |_| true, "")?.unwrap_or(0.0);
+        let friction_torque = || {
+            Ok::<_, IoError>(
+                opt("friction_torque", &raw.friction_torque, non_negative, ">= 0")?.unwrap_or(0.0),
+            )
+        };
         Ok(match ty {
             JointType::Ball => JointKind::Ball(BallJoint {
                 swing_limit: opt("swing_limit", &raw.swing_limit, non_negative, ">= 0")?,
                 twist_limits: limits("twist_limits", &raw.twist_limits)?,
+                friction_torque: friction_torque()?,
             }),
             JointType::Hinge => JointKind::Hinge(HingeJoint {
                 limits: limits("limits", &raw.limits)?,
                 motor,
                 spring,
                 spring_target_angle: target,
+                friction_torque: friction_torque()?,
             }),
             JointType::Slider => JointKind::Slider(SliderJoint {
                 limits: limits("limits", &raw.limits)?,

@@ -206,6 +206,7 @@ pub(super) struct RawJoint {
     pub spring_target: Option<Number>,
     pub swing_limit: Option<Number>,
     pub twist_limits: Option<Pair>,
+    pub friction_torque: Option<Number>,
     pub length: Option<Number>,
     pub min_length: Option<Number>,
     pub max_length: Option<Number>,
@@ -231,6 +232,7 @@ impl RawJoint {
         push("spring_target", self.spring_target.as_ref().map(|v| v.span()));
         push("swing_limit", self.swing_limit.as_ref().map(|v| v.span()));
         push("twist_limits", self.twist_limits.as_ref().map(|v| v.span()));
+        push("friction_torque", self.friction_torque.as_ref().map(|v| v.span()));
         push("length", self.length.as_ref().map(|v| v.span()));
         push("min_length", self.min_length.as_ref().map(|v| v.span()));
         push("max_length", self.max_length.as_ref().map(|v| v.span()));
@@ -263,8 +265,9 @@ impl JointType {
     /// `anchor`, `break_force`, `break_torque`, `collide_connected`, which every joint takes).
     pub fn keys(self) -> &'static [&'static str] {
         match self {
-            JointType::Ball => &["axis", "swing_limit", "twist_limits"],
-            JointType::Hinge | JointType::Slider => &["axis", "limits", "motor", "spring", "spring_target"],
+            JointType::Ball => &["axis", "swing_limit", "twist_limits", "friction_torque"],
+            JointType::Hinge => &["axis", "limits", "motor", "spring", "spring_target", "friction_torque"],
+            JointType::Slider => &["axis", "limits", "motor", "spring", "spring_target"],
             JointType::Fixed => &[],
             JointType::Distance => &["anchor_b", "length", "min_length", "max_length", "spring"],
         }

@@ -16,17 +16,15 @@
 //! A single point (a ball, a tipped box's corner) is the same as per-point friction.
 
 use crate::dynamics::contact_block::MAX_POINTS;
-use crate::dynamics::contact_solver::shared_levers;
+use crate::dynamics::contact_solver::{round_anchors, round_locals, shared_levers};
 use crate::dynamics::joint::parts::{apply_point_impulse, invert_or_zero, point_mass_matrix};
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::{DMat3, DVec3};
 
 #[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct PatchFriction {
-    /// The centre's offsets from the centres of mass at the step start, world frame.
-    r_a0: DVec3,
-    r_b0: DVec3,
-    /// The centre as material points of each body.
+    /// The centre as material points of each body (centres of curvature on a round side, see
+    /// `PointConstraint::anchors`).
     r_a_local: DVec3,
     r_b_local: DVec3,
     /// Inverse of the 2×2 tangent effective mass at the centre, embedded in 3×3 over the plane.
@@ -45,8 +43,6 @@ pub(crate) struct PatchFriction {
 
 impl PatchFriction {
     pub const EMPTY: PatchFriction = PatchFriction {
-        r_a0: DVec3::ZERO,
-        r_b0: DVec3::ZERO,
         r_a_local: DVec3::ZERO,
         r_b_local: DVec3::ZERO,
         tangent_mass: DMat3::ZERO,
@@ -63,6 +59,7 @@ impl PatchFriction {
         a: &SolverBody,
         b: &SolverBody,
         arms: &[(DVec3, DVec3)],
+        radii: (f64, f64),
         normal: DVec3,
         tangent_impulse: DVec3,
         twist_impulse: f64,
@@ -82,11 +79,10 @@ impl PatchFriction {
         for (arm, r) in twist_arms.iter_mut().zip(arms) {
             *arm = (projector * (r.1 - r_b)).length();
         }
+        let (r_a_local, r_b_local) = round_locals((r_a, r_b), radii, normal, a, b);
         PatchFriction {
-            r_a0: r_a,
-            r_b0: r_b,
-            r_a_local: a.q.inverse() * r_a,
-            r_b_local: b.q.inverse() * r_b,
+            r_a_local,
+            r_b_local,
             tangent_mass: projector * invert_or_zero(kt) * projector,
             sliding_mass: if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 },
             twist_mass: if k_twist > 0.0 { 1.0 / k_twist } else { 0.0 },
@@ -96,25 +92,22 @@ impl PatchFriction {
         }
     }
 
-    /// The centre's offsets now: material points, or the step-start offsets on a round surface
-    /// (see `PointConstraint::anchors`).
+    /// The centre's offsets now (see `PointConstraint::anchors`).
     #[inline]
-    fn anchors(&self, round: (bool, bool), a: &SolverBody, b: &SolverBody) -> (DVec3, DVec3) {
-        let r_a = if round.0 { self.r_a0 } else { a.q * self.r_a_local };
-        let r_b = if round.1 { self.r_b0 } else { b.q * self.r_b_local };
-        (r_a, r_b)
+    fn anchors(&self, radii: (f64, f64), normal: DVec3, a: &SolverBody, b: &SolverBody) -> (DVec3, DVec3) {
+        round_anchors((self.r_a_local, self.r_b_local), radii, normal, a, b)
     }
 
     /// Stage "warm start".
     pub fn warm_start(
         &self,
-        round: (bool, bool),
+        radii: (f64, f64),
         normal: DVec3,
         com_offset: DVec3,
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) {
-        let (r_a, r_b) = shared_levers(self.anchors(round, a, b), com_offset, a, b);
+        let (r_a, r_b) = shared_levers(self.anchors(radii, normal, a, b), com_offset, a, b);
         apply_point_impulse(a, b, r_a, r_b, self.tangent_impulse);
         let twist = self.twist_impulse * normal;
         a.w -= a.inv_inertia * twist;
@@ -125,7 +118,7 @@ impl PatchFriction {
     /// tangent rows bounded by `μ Σλ_n`, the twist row by `μ Σ λ_nᵢ dᵢ`.
     pub fn solve(
         &mut self,
-        round: (bool, bool),
+        radii: (f64, f64),
         normal: DVec3,
         com_offset: DVec3,
         friction: f64,
@@ -151,7 +144,7 @@ impl PatchFriction {
         // slip, but the 2×2 mass turns the impulse away from it (by ~20° at a box corner, which
         // cut the friction of a sliding box by 6%); so a sliding patch is updated with the
         // isotropic mass, whose fixed point on the rim is anti-parallel to the slip velocity.
-        let (r_a, r_b) = shared_levers(self.anchors(round, a, b), com_offset, a, b);
+        let (r_a, r_b) = shared_levers(self.anchors(radii, normal, a, b), com_offset, a, b);
         let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
         let vt = dv - normal.dot(dv) * normal;
         let old = self.tangent_impulse;

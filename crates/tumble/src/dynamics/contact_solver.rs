@@ -107,15 +107,17 @@ impl PointConstraint {
     ///
     /// On a corner, edge or face the contact point is a material point: it turns with the body
     /// (that is what makes a tumbling box's corner stop dead on impact). On a round surface
-    /// (sphere, capsule) it is not: as a ball rolls, its contact stays at the bottom, and a
-    /// material point would roll away from the ground and let the ball sink; so there the
-    /// step-start offset is kept, which also keeps the contact on the line through the ball's
-    /// centre (no spurious torque, even from the large impulse that stops a fast ball).
+    /// (sphere, capsule of radius `R`) it is not: as a ball rolls, its contact stays at the
+    /// bottom, and a material point would roll away from the ground and let the ball sink. There
+    /// the material point is the centre of curvature (the ball's centre, a point of the capsule's
+    /// axis), and the contact is `R` from it along the normal: it stays on the line through the
+    /// centre (no spurious torque, even from the large impulse that stops a fast ball) and moves
+    /// with the body as a whole. (Holding the whole step-start offset fixed instead lets a capsule
+    /// end rolling round a pivot push with a lever that lags its turning; that fed the rolling
+    /// energy, exponentially.) `radii` are 0 for corners, edges and faces.
     #[inline]
-    fn anchors(&self, round: (bool, bool), a: &SolverBody, b: &SolverBody) -> (DVec3, DVec3) {
-        let r_a = if round.0 { self.r_a0 } else { a.q * self.r_a_local };
-        let r_b = if round.1 { self.r_b0 } else { b.q * self.r_b_local };
-        (r_a, r_b)
+    fn anchors(&self, radii: (f64, f64), n: DVec3, a: &SolverBody, b: &SolverBody) -> (DVec3, DVec3) {
+        round_anchors((self.r_a_local, self.r_b_local), radii, n, a, b)
     }
 
     /// The separation now: the measured separation advanced by how far each body's contact point
@@ -139,6 +141,41 @@ impl PointConstraint {
         max_normal_impulse: 0.0,
         relative_velocity: 0.0,
     };
+}
+
+/// Material offsets `(r_a_local, r_b_local)` from the step-start surface points `r_a`, `r_b`: the
+/// points themselves, or on a round side (radius > 0) its centre of curvature, `R` behind the
+/// surface along the normal `n` (from a to b). See `PointConstraint::anchors`.
+#[inline]
+pub(crate) fn round_locals(
+    (r_a, r_b): (DVec3, DVec3),
+    radii: (f64, f64),
+    n: DVec3,
+    a: &SolverBody,
+    b: &SolverBody,
+) -> (DVec3, DVec3) {
+    (a.q.inverse() * (r_a - radii.0 * n), b.q.inverse() * (r_b + radii.1 * n))
+}
+
+/// The surface points now from the material offsets of `round_locals`.
+#[inline]
+pub(crate) fn round_anchors(
+    (r_a_local, r_b_local): (DVec3, DVec3),
+    radii: (f64, f64),
+    n: DVec3,
+    a: &SolverBody,
+    b: &SolverBody,
+) -> (DVec3, DVec3) {
+    (a.q * r_a_local + radii.0 * n, b.q * r_b_local - radii.1 * n)
+}
+
+/// The inverse of `k`'s block on the plane perpendicular to `normal`, as a 3×3 that maps the
+/// plane to itself (and the normal to 0).
+pub(crate) fn tangent_block_inverse(k: DMat3, normal: DVec3) -> DMat3 {
+    let outer = DMat3::from_cols(normal * normal.x, normal * normal.y, normal * normal.z);
+    let projector = DMat3::IDENTITY - outer;
+    // A unit entry along the normal makes the 3×3 invertible; it is projected away again.
+    projector * invert_or_zero(projector * k * projector + outer) * projector
 }
 
 /// The lever arms at which a contact's impulse acts: one shared world point for both bodies.
@@ -172,9 +209,10 @@ pub(crate) fn shared_levers(
 pub(crate) struct ContactConstraint {
     /// The contact this came from (its proxy pair).
     pub key: (ProxyKey, ProxyKey),
-    /// Whether each side is a round surface (sphere, capsule) whose contact point stays put as the
-    /// body turns, rather than a corner or face that carries it along (see `anchors`).
-    round: (bool, bool),
+    /// Each side's radius of curvature: a sphere's or capsule's radius, whose contact point stays
+    /// at the bottom as the body rolls, or 0 for a corner or face that carries it along (see
+    /// `anchors`).
+    radii: (f64, f64),
     pub body_a: usize,
     pub body_b: usize,
     normal: DVec3,
@@ -188,8 +226,13 @@ pub(crate) struct ContactConstraint {
     normal_coupling: [[f64; MAX_POINTS]; MAX_POINTS],
     /// Coulomb friction at the manifold's centre (contact_friction.rs).
     friction: PatchFriction,
-    /// Angular effective mass of the pair, `(I_a⁻¹ + I_b⁻¹)⁻¹`, for rolling and torsion.
-    angular_mass: DMat3,
+    /// Effective mass of the torsion row about the normal, `1 / n·(I_a⁻¹ + I_b⁻¹)·n`.
+    torsional_mass: f64,
+    /// Effective mass of the two rolling rows about the tangent axes: the tangent block of
+    /// `I_a⁻¹ + I_b⁻¹`, inverted on the tangent plane. (The tangent part of the full 3×3 inverse
+    /// is larger on a long body — up to the ratio of its moments — and over-relaxed the rows until
+    /// they fed energy into a capsule lying on the ground.)
+    rolling_mass: DMat3,
     rolling_impulse: DVec3,
     torsional_impulse: f64,
 }
@@ -203,7 +246,7 @@ impl ContactConstraint {
         (body_a, body_b): (usize, usize),
         (a, b): (&SolverBody, &SolverBody),
         (com_a, com_b): (DVec3, DVec3),
-        round: (bool, bool),
+        radii: (f64, f64),
         normal: DVec3,
         points: &[ContactPointInput],
         material: ContactMaterial,
@@ -213,7 +256,7 @@ impl ContactConstraint {
             if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
         let mut constraint = ContactConstraint {
             key,
-            round,
+            radii,
             body_a,
             body_b,
             normal,
@@ -223,7 +266,15 @@ impl ContactConstraint {
             point_count: points.len().min(4),
             normal_coupling: [[0.0; MAX_POINTS]; MAX_POINTS],
             friction: PatchFriction::EMPTY,
-            angular_mass: invert_or_zero(a.inv_inertia + b.inv_inertia),
+            torsional_mass: {
+                let k = normal.dot((a.inv_inertia + b.inv_inertia) * normal);
+                if k > 0.0 {
+                    1.0 / k
+                } else {
+                    0.0
+                }
+            },
+            rolling_mass: tangent_block_inverse(a.inv_inertia + b.inv_inertia, normal),
             rolling_impulse: DVec3::ZERO,
             torsional_impulse: 0.0,
         };
@@ -232,9 +283,10 @@ impl ContactConstraint {
             // its own surface point, on the line through its centre (a speculative point can lie
             // far outside it, and pushing there would spin it); others at the midpoint.
             let r_a = input.point_world
-                - if round.0 { 0.5 * input.separation * normal } else { DVec3::ZERO }
+                - if radii.0 > 0.0 { 0.5 * input.separation * normal } else { DVec3::ZERO }
                 - com_a;
-            let r_b = input.point_world + if round.1 { 0.5 * input.separation * normal } else { DVec3::ZERO }
+            let r_b = input.point_world
+                + if radii.1 > 0.0 { 0.5 * input.separation * normal } else { DVec3::ZERO }
                 - com_b;
             let relative_velocity = normal.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
             let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
@@ -242,8 +294,8 @@ impl ContactConstraint {
                 softness,
                 r_a0: r_a,
                 r_b0: r_b,
-                r_a_local: a.q.inverse() * r_a,
-                r_b_local: b.q.inverse() * r_b,
+                r_a_local: round_locals((r_a, r_b), radii, normal, a, b).0,
+                r_b_local: round_locals((r_a, r_b), radii, normal, a, b).1,
                 base_separation: input.separation,
                 normal_impulse: if ctx.warm_starting { input.impulse.normal } else { 0.0 },
                 steady_normal_impulse: if ctx.warm_starting { input.impulse.steady_normal } else { 0.0 },
@@ -263,7 +315,7 @@ impl ContactConstraint {
         } else {
             (DVec3::ZERO, 0.0)
         };
-        constraint.friction = PatchFriction::prepare(a, b, &offsets[..count], normal, tangent, twist);
+        constraint.friction = PatchFriction::prepare(a, b, &offsets[..count], radii, normal, tangent, twist);
         let arms = |pc: &PointConstraint| (pc.r_a0.cross(normal), pc.r_b0.cross(normal));
         for i in 0..count {
             let (ai, bi) = arms(&constraint.points[i]);
@@ -282,12 +334,12 @@ impl ContactConstraint {
 
     /// Stage "warm start": apply the accumulated impulses again.
     pub fn warm_start(&self, a: &mut SolverBody, b: &mut SolverBody) {
-        let round = self.round;
+        let radii = self.radii;
         for pc in &self.points[..self.point_count] {
-            let (r_a, r_b) = shared_levers(pc.anchors(round, a, b), self.com_offset, a, b);
+            let (r_a, r_b) = shared_levers(pc.anchors(radii, self.normal, a, b), self.com_offset, a, b);
             Self::apply(a, b, r_a, r_b, pc.normal_impulse * self.normal);
         }
-        self.friction.warm_start(round, self.normal, self.com_offset, a, b);
+        self.friction.warm_start(radii, self.normal, self.com_offset, a, b);
         let angular = self.rolling_impulse + self.torsional_impulse * self.normal;
         a.w -= a.inv_inertia * angular;
         b.w += b.inv_inertia * angular;
@@ -295,7 +347,7 @@ impl ContactConstraint {
 
     /// Stage "solve" (`use_bias`) or "relax" (`!use_bias`).
     pub fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext, use_bias: bool) {
-        let round = self.round;
+        let radii = self.radii;
         let n = self.normal;
         let total_normal = self.solve_normals(a, b, ctx, use_bias);
 
@@ -304,7 +356,7 @@ impl ContactConstraint {
             *l = pc.normal_impulse;
         }
         self.friction.solve(
-            round,
+            radii,
             n,
             self.com_offset,
             self.material.friction,
@@ -317,7 +369,7 @@ impl ContactConstraint {
         if self.material.torsional_friction > 0.0 {
             let max = self.material.torsional_friction * total_normal;
             let w_rel = n.dot(b.w - a.w);
-            let k = n.dot(self.angular_mass * n);
+            let k = self.torsional_mass;
             let old = self.torsional_impulse;
             self.torsional_impulse = (old - k * w_rel).clamp(-max, max);
             let p = (self.torsional_impulse - old) * n;
@@ -329,7 +381,7 @@ impl ContactConstraint {
             let w = b.w - a.w;
             let w_roll = w - n.dot(w) * n;
             let old = self.rolling_impulse;
-            let mut new = old - self.angular_mass * w_roll;
+            let mut new = old - self.rolling_mass * w_roll;
             new -= n.dot(new) * n;
             let len = new.length();
             if len > max {
@@ -350,7 +402,7 @@ impl ContactConstraint {
         ctx: &StepContext,
         use_bias: bool,
     ) -> f64 {
-        let round = self.round;
+        let radii = self.radii;
         let n = self.normal;
         let count = self.point_count;
         // The load the manifold carries at rest, shared evenly: the soft rows give way only to the
@@ -362,7 +414,7 @@ impl ContactConstraint {
         let mut accumulated = [0.0; MAX_POINTS];
         let mut anchors = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
-            let material = pc.anchors(round, a, b);
+            let material = pc.anchors(radii, self.normal, a, b);
             let s = pc.separation(material, a, b, n);
             let (r_a, r_b) = shared_levers(material, self.com_offset, a, b);
             anchors[i] = (r_a, r_b);
@@ -430,7 +482,7 @@ impl ContactConstraint {
     /// Stage "restitution": after the substeps, make points that approached faster than the
     /// threshold separate at `e` times their approach speed.
     pub fn apply_restitution(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext) {
-        let round = self.round;
+        let radii = self.radii;
         let e = self.material.restitution;
         if e == 0.0 {
             return;
@@ -447,7 +499,7 @@ impl ContactConstraint {
             if pc.relative_velocity > -ctx.restitution_threshold || pc.max_normal_impulse == 0.0 {
                 continue;
             }
-            let (r_a, r_b) = shared_levers(pc.anchors(round, a, b), self.com_offset, a, b);
+            let (r_a, r_b) = shared_levers(pc.anchors(radii, self.normal, a, b), self.com_offset, a, b);
             let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
             let row = block.count;
             rows[row] = i;

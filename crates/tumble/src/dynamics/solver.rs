@@ -59,6 +59,17 @@ pub struct SolverSettings {
     /// bodies, and a learned load that lags a swinging pendulum pulls it apart. Default 0.1 s.
     #[serde(default)]
     pub steady_load_time: f64,
+    /// Solve the rows holding tree-shaped groups of joints together (chains, ragdolls, arms)
+    /// exactly in each pass, all at once (`dynamics/joint_tree/`), rather than row by row. Exact
+    /// rows do not stretch under load, whatever the mass ratios; `joint_hertz` then sets only how
+    /// fast drift is corrected. Loops, distance joints, limits, motors and springs are solved row
+    /// by row either way. Default true.
+    #[serde(default = "default_true")]
+    pub joint_trees: bool,
+}
+
+fn default_true() -> bool {
+    true
 }
 
 impl Default for SolverSettings {
@@ -75,6 +86,7 @@ impl Default for SolverSettings {
             solve_iterations: 1,
             relax_iterations: 1,
             steady_load_time: 0.1,
+            joint_trees: true,
         }
     }
 }
@@ -190,6 +202,14 @@ impl World {
             }
         }
 
+        // Joint trees: the figures whose joints' equality rows are solved exactly.
+        let mut trees = std::mem::take(&mut self.joint_trees);
+        if self.solver_settings.joint_trees {
+            trees.build(&mut self.joints, &bodies);
+        } else {
+            trees.clear(&mut self.joints);
+        }
+
         // Prepare contacts: every touching, non-sensor manifold with a body that can move.
         let mut contacts = std::mem::take(&mut self.contact_constraints);
         contacts.clear();
@@ -203,15 +223,16 @@ impl World {
                 continue;
             }
             let (Some(a), Some(b)) = (self.bodies.iter_slot(ia), self.bodies.iter_slot(ib)) else { continue };
-            let round = |body: &Body, child: u32| {
-                body.shape().is_some_and(|shape| {
-                    matches!(
-                        crate::collision::contact_manager::leaf(shape, child).0,
-                        Shape::Sphere(_) | Shape::Capsule(_)
-                    )
-                })
+            // Round sides (spheres, capsules) keep their contact at the bottom as they roll.
+            let radius = |body: &Body, child: u32| match body
+                .shape()
+                .map(|shape| crate::collision::contact_manager::leaf(shape, child).0)
+            {
+                Some(Shape::Sphere(s)) => s.radius,
+                Some(Shape::Capsule(c)) => c.radius,
+                _ => 0.0,
             };
-            let round = (round(a, contact.child_a), round(b, contact.child_b));
+            let radii = (radius(a, contact.child_a), radius(b, contact.child_b));
             let mut points = [ContactPointInput::default(); 4];
             for ((input, point), impulse) in points.iter_mut().zip(manifold.points()).zip(&contact.impulses) {
                 *input = ContactPointInput {
@@ -225,7 +246,7 @@ impl World {
                 (ia, ib),
                 (&bodies[ia], &bodies[ib]),
                 (a.com_world(), b.com_world()),
-                round,
+                radii,
                 manifold.normal_world,
                 &points[..manifold.len()],
                 contact.material,
@@ -248,6 +269,7 @@ impl World {
                     let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
                     c.solve(a, b, &ctx, true);
                 }
+                trees.solve(&mut self.joints, &mut bodies, ctx.joint_softness.bias_rate);
             }
             for body in bodies.iter_mut() {
                 body.integrate_position(ctx.h);
@@ -279,6 +301,7 @@ impl World {
             }
         }
         self.contact_constraints = contacts;
+        self.joint_trees = trees;
 
         // Store: constraint forces and joint breaking, then write the bodies back.
         for (_, joint) in self.joints.iter_mut() {

@@ -87,6 +87,19 @@ impl SolverBody {
         }
     }
 
+    /// The mass and world inertia tensor, or `None` unless both are finite and positive (a body
+    /// that does not move, or one with an infinite moment).
+    pub fn mass_matrix(&self) -> Option<(f64, DMat3)> {
+        let finite_positive = |x: f64| x.is_finite() && x > 0.0;
+        if !finite_positive(self.inv_mass)
+            || !self.inertia_principal.to_array().into_iter().all(finite_positive)
+        {
+            return None;
+        }
+        let r = DMat3::from_quat(self.q * self.principal_rotation_local);
+        Some((1.0 / self.inv_mass, r * DMat3::from_diagonal(self.inertia_principal) * r.transpose()))
+    }
+
     fn refresh_inverse_inertia(&mut self) {
         let r = DMat3::from_quat(self.q * self.principal_rotation_local);
         self.inv_inertia = r * DMat3::from_diagonal(self.inertia_principal.recip()) * r.transpose();

@@ -198,6 +198,7 @@ pub fn ragdolls(count: usize) -> Scene {
                     JointKind::Ball(BallJoint {
                         swing_limit: Some(swing),
                         twist_limits: Some(Limits::new(twist.0, twist.1)),
+                        ..Default::default()
                     }),
                 )
                 .with_axis(pose.rotation * axis),

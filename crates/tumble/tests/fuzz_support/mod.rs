@@ -304,6 +304,7 @@ pub fn check_world(input: &WorldInput) {
             0 => JointKind::Ball(BallJoint {
                 swing_limit: (j.limit % 2 == 0).then_some(limit),
                 twist_limits: (j.limit % 3 == 0).then(|| Limits::new(-limit, limit)),
+                ..Default::default()
             }),
             1 => JointKind::Hinge(HingeJoint {
                 limits: (j.limit % 2 == 0).then(|| Limits::new(-limit, limit)),

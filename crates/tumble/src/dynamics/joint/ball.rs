@@ -12,10 +12,11 @@
 //!   half-way axis `(z_a + z_b)/|z_a + z_b|` (exact without swing, and the usual choice with it,
 //!   as in Jolt's swing–twist part): rows `φ − lower ≥ 0` and `upper − φ ≥ 0`.
 
+use super::equality::EqualityRows;
 use super::frames::JointPose;
 use super::hard_softness;
-use super::parts::{AngularAxisPart, PointPart, RowDrive};
-use super::settings::{check_angle_limits, Limits};
+use super::parts::{AngularAxisPart, AngularFrictionPart, PointPart, RowDrive};
+use super::settings::{check_angle_limits, check_non_negative, Limits};
 use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::DVec3;
@@ -30,6 +31,11 @@ pub struct BallJoint {
     /// Range of the twist of body b about the joint axis relative to body a, rad, within
     /// `[−π, π]`. `None`: free.
     pub twist_limits: Option<Limits>,
+    /// Largest torque the joint's friction exerts against relative rotation, N·m (default 0:
+    /// frictionless). A ragdoll's joints need some to come to rest: without it a limb lying on
+    /// the ground can roll to and fro between its limits for ever.
+    #[serde(default)]
+    pub friction_torque: f64,
 }
 
 /// Solver state of a ball joint.
@@ -39,6 +45,7 @@ pub(crate) struct BallParts {
     swing: AngularAxisPart,
     twist_lower: AngularAxisPart,
     twist_upper: AngularAxisPart,
+    friction: AngularFrictionPart,
 }
 
 /// The swing row now: its Jacobian axis and `C = θ_max − θ`, or `None` when the axes are aligned.
@@ -77,7 +84,7 @@ impl BallJoint {
         if let Some(limits) = &self.twist_limits {
             check_angle_limits("ball twist_limits", limits)?;
         }
-        Ok(())
+        check_non_negative("ball friction_torque", self.friction_torque)
     }
 
     pub(crate) fn warm_start(
@@ -87,6 +94,9 @@ impl BallJoint {
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) {
+        if self.friction_torque > 0.0 {
+            parts.friction.warm_start(a, b);
+        }
         if let Some(half_angle) = self.swing_limit {
             if let Some((axis, _)) = swing_row(pose, half_angle) {
                 parts.swing.warm_start(a, b, axis);
@@ -109,8 +119,12 @@ impl BallJoint {
         b: &mut SolverBody,
         ctx: &StepContext,
         use_bias: bool,
+        solve_equality: bool,
     ) {
         let softness = hard_softness(ctx, use_bias);
+        if self.friction_torque > 0.0 {
+            parts.friction.solve(a, b, self.friction_torque * ctx.h);
+        }
         if let Some(half_angle) = self.swing_limit {
             match swing_row(pose, half_angle) {
                 Some((axis, c)) => parts.swing.solve(a, b, axis, RowDrive::limit(c, ctx.inv_h, softness)),
@@ -133,7 +147,21 @@ impl BallJoint {
             }
         }
         // The point rows last: holding the joint together matters most.
-        parts.point.solve(a, b, pose.r_a, pose.r_b, pose.separation, softness);
+        if solve_equality {
+            parts.point.solve(a, b, pose.r_a, pose.r_b, pose.separation, softness);
+        }
+    }
+
+    /// The point rows (`equality.rs`).
+    pub(crate) fn equality_rows(pose: &JointPose) -> EqualityRows {
+        let mut rows = EqualityRows::default();
+        rows.push_point(pose);
+        rows
+    }
+
+    /// Adds impulses found for the equality rows to the accumulated ones.
+    pub(crate) fn add_equality_impulse(parts: &mut BallParts, lambda: &[f64]) {
+        parts.point.impulse += DVec3::new(lambda[0], lambda[1], lambda[2]);
     }
 
     /// Magnitudes of the accumulated (per-substep) linear and angular impulses.

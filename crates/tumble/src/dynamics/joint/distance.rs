@@ -136,6 +136,7 @@ impl DistanceJoint {
         b: &mut SolverBody,
         ctx: &StepContext,
         use_bias: bool,
+        _solve_equality: bool,
     ) {
         let softness = hard_softness(ctx, use_bias);
         let (row, distance) = Self::row(pose);

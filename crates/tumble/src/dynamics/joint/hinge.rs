@@ -8,11 +8,13 @@
 //! * motor: `θ̇ → target_speed` with `|τ| ≤ max_force` (N·m);
 //! * spring: `C = θ − target` with the spring's own softness, `k = I_eff (2π·hertz)²`.
 
+use super::equality::EqualityRows;
 use super::frames::{wrap_angle, JointPose};
 use super::hard_softness;
 use super::parts::{AngularAxisPart, HingeAxes, HingeRotationPart, PointPart, RowDrive};
 use super::settings::{
-    check_angle_limits, check_finite, check_motor, check_spring, Limits, Motor, SpringSettings,
+    check_angle_limits, check_finite, check_motor, check_non_negative, check_spring, Limits, Motor,
+    SpringSettings,
 };
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver::StepContext;
@@ -30,6 +32,10 @@ pub struct HingeJoint {
     pub spring: Option<SpringSettings>,
     /// Rest angle of the spring, rad (the error is wrapped into `(−π, π]`).
     pub spring_target_angle: f64,
+    /// Largest torque the hinge's friction exerts against rotation about its axis, N·m (default
+    /// 0: frictionless).
+    #[serde(default)]
+    pub friction_torque: f64,
 }
 
 /// Solver state of a hinge joint.
@@ -41,6 +47,7 @@ pub(crate) struct HingeParts {
     upper: AngularAxisPart,
     motor: AngularAxisPart,
     spring: AngularAxisPart,
+    friction: AngularAxisPart,
 }
 
 fn hinge_axes(pose: &JointPose) -> HingeAxes {
@@ -61,6 +68,7 @@ impl HingeJoint {
         if let Some(spring) = &self.spring {
             check_spring("hinge spring", spring)?;
         }
+        check_non_negative("hinge friction_torque", self.friction_torque)?;
         check_finite("hinge spring_target_angle", self.spring_target_angle)
     }
 
@@ -73,6 +81,7 @@ impl HingeJoint {
     ) {
         let axis = pose.axis_a();
         parts.spring.warm_start(a, b, axis);
+        parts.friction.warm_start(a, b, axis);
         parts.motor.warm_start(a, b, axis);
         parts.lower.warm_start(a, b, axis);
         parts.upper.warm_start(a, b, -axis);
@@ -88,6 +97,7 @@ impl HingeJoint {
         b: &mut SolverBody,
         ctx: &StepContext,
         use_bias: bool,
+        solve_equality: bool,
     ) {
         let softness = hard_softness(ctx, use_bias);
         let axis = pose.axis_a();
@@ -100,6 +110,9 @@ impl HingeJoint {
             let drive = RowDrive::soft(c, Softness::new(spring.hertz, spring.damping_ratio, ctx.h));
             parts.spring.solve(a, b, axis, drive);
         }
+        if self.friction_torque > 0.0 {
+            parts.friction.solve(a, b, axis, RowDrive::motor(0.0, self.friction_torque * ctx.h));
+        }
         if let Some(motor) = &self.motor {
             parts.motor.solve(a, b, axis, RowDrive::motor(motor.target_speed, motor.max_force * ctx.h));
         }
@@ -107,8 +120,24 @@ impl HingeJoint {
             parts.lower.solve(a, b, axis, RowDrive::limit(angle - limits.lower, ctx.inv_h, softness));
             parts.upper.solve(a, b, -axis, RowDrive::limit(limits.upper - angle, ctx.inv_h, softness));
         }
-        parts.rotation.solve(a, b, &hinge_axes(pose), softness);
-        parts.point.solve(a, b, pose.r_a, pose.r_b, pose.separation, softness);
+        if solve_equality {
+            parts.rotation.solve(a, b, &hinge_axes(pose), softness);
+            parts.point.solve(a, b, pose.r_a, pose.r_b, pose.separation, softness);
+        }
+    }
+
+    /// The point and hinge-rotation rows (`equality.rs`).
+    pub(crate) fn equality_rows(pose: &JointPose) -> EqualityRows {
+        let mut rows = EqualityRows::default();
+        rows.push_point(pose);
+        rows.push_hinge_rotation(&hinge_axes(pose));
+        rows
+    }
+
+    /// Adds impulses found for the equality rows to the accumulated ones.
+    pub(crate) fn add_equality_impulse(parts: &mut HingeParts, lambda: &[f64]) {
+        parts.point.impulse += DVec3::new(lambda[0], lambda[1], lambda[2]);
+        parts.rotation.impulse += glam::DVec2::new(lambda[3], lambda[4]);
     }
 
     /// Magnitudes of the accumulated (per-substep) linear and angular impulses.

@@ -20,6 +20,7 @@
 
 mod ball;
 mod distance;
+pub(crate) mod equality;
 mod fixed;
 pub(crate) mod frames;
 mod hinge;
@@ -197,6 +198,10 @@ pub struct Joint {
     /// Set by the solver each step: false when neither body can move (both asleep or fixed), so
     /// the joint is skipped and keeps its impulses and forces.
     pub(crate) solving: bool,
+    /// Set by the solver each step: true when the joint's equality rows are solved exactly as
+    /// part of a joint tree (`dynamics/joint_tree/`) rather than row by row here.
+    #[serde(skip)]
+    pub(crate) in_tree: bool,
     /// Constraint force and torque magnitudes over the last step, N and N·m.
     pub(crate) force: f64,
     pub(crate) torque: f64,
@@ -234,6 +239,7 @@ impl Joint {
             break_torque: def.break_torque,
             broken: false,
             solving: false,
+            in_tree: false,
             force: 0.0,
             torque: 0.0,
             frames: JointFrames::default(),
@@ -317,9 +323,46 @@ impl Joint {
         use_bias: bool,
     ) {
         let pose = self.frames.pose(a, b);
+        // A tree's equality rows are solved exactly in the biased pass (`joint_tree/`); the relax
+        // pass takes them row by row here, before the contacts, so contacts keep the last word.
+        let solve_equality = !self.in_tree || !use_bias;
         with_parts!(&self.kind, &mut self.parts, |settings, parts| {
-            settings.solve(parts, &pose, a, b, ctx, use_bias)
+            settings.solve(parts, &pose, a, b, ctx, use_bias, solve_equality)
         })
+    }
+
+    /// The equality rows now (`equality.rs`), or `None` for a kind the joint tree leaves to the
+    /// row-by-row solve (distance joints: their rows switch between rigid, rope and spring).
+    pub(crate) fn equality_rows(&self, a: &SolverBody, b: &SolverBody) -> Option<equality::EqualityRows> {
+        let pose = self.frames.pose(a, b);
+        match &self.kind {
+            JointKind::Ball(_) => Some(BallJoint::equality_rows(&pose)),
+            JointKind::Hinge(_) => Some(HingeJoint::equality_rows(&pose)),
+            JointKind::Slider(_) => Some(SliderJoint::equality_rows(&pose)),
+            JointKind::Fixed(_) => Some(FixedJoint::equality_rows(&pose)),
+            JointKind::Distance(_) => None,
+        }
+    }
+
+    /// How many equality rows the joint tree solves for this joint (0: none).
+    pub(crate) fn equality_row_count(&self) -> usize {
+        match &self.kind {
+            JointKind::Ball(_) => 3,
+            JointKind::Hinge(_) | JointKind::Slider(_) => 5,
+            JointKind::Fixed(_) => 6,
+            JointKind::Distance(_) => 0,
+        }
+    }
+
+    /// Adds the impulses the joint tree found for the equality rows to the accumulated ones.
+    pub(crate) fn add_equality_impulse(&mut self, lambda: &[f64]) {
+        match &mut self.parts {
+            JointParts::Ball(p) => BallJoint::add_equality_impulse(p, lambda),
+            JointParts::Hinge(p) => HingeJoint::add_equality_impulse(p, lambda),
+            JointParts::Slider(p) => SliderJoint::add_equality_impulse(p, lambda),
+            JointParts::Fixed(p) => FixedJoint::add_equality_impulse(p, lambda),
+            JointParts::Distance(_) => {}
+        }
     }
 
     /// Stage "store impulses": the constraint force and torque of the step and joint breaking.

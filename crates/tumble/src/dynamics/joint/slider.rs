@@ -9,6 +9,7 @@
 //! * motor `ẋ → target_speed` with `|F| ≤ max_force` (N);
 //! * spring `C = x − target` with `k = m_eff (2π·hertz)²`.
 
+use super::equality::EqualityRows;
 use super::frames::JointPose;
 use super::hard_softness;
 use super::parts::{AxisJacobian, AxisPart, RotationPart, RowDrive};
@@ -90,6 +91,7 @@ impl SliderJoint {
         b: &mut SolverBody,
         ctx: &StepContext,
         use_bias: bool,
+        solve_equality: bool,
     ) {
         let softness = hard_softness(ctx, use_bias);
         let (axis, perpendicular) = jacobians(pose);
@@ -108,12 +110,33 @@ impl SliderJoint {
             let upper = RowDrive::limit(limits.upper - translation, ctx.inv_h, softness);
             parts.upper.solve(a, b, &axis.negated(), upper);
         }
+        if !solve_equality {
+            return;
+        }
         let c_rotation = RotationPart::error(pose.rotation_a, pose.rotation_b);
         parts.rotation.solve(a, b, c_rotation, softness);
         for (part, jacobian) in parts.perpendicular.iter_mut().zip(&perpendicular) {
             let c = jacobian.linear.dot(pose.separation);
             part.solve(a, b, jacobian, RowDrive::soft(c, softness));
         }
+    }
+
+    /// The rotation and perpendicular rows (`equality.rs`).
+    pub(crate) fn equality_rows(pose: &JointPose) -> EqualityRows {
+        let (_, perpendicular) = jacobians(pose);
+        let mut rows = EqualityRows::default();
+        rows.push_rotation(RotationPart::error(pose.rotation_a, pose.rotation_b));
+        for jacobian in &perpendicular {
+            rows.push_axis(jacobian, jacobian.linear.dot(pose.separation));
+        }
+        rows
+    }
+
+    /// Adds impulses found for the equality rows to the accumulated ones.
+    pub(crate) fn add_equality_impulse(parts: &mut SliderParts, lambda: &[f64]) {
+        parts.rotation.impulse += DVec3::new(lambda[0], lambda[1], lambda[2]);
+        parts.perpendicular[0].impulse += lambda[3];
+        parts.perpendicular[1].impulse += lambda[4];
     }
 
     /// Magnitudes of the accumulated (per-substep) linear and angular impulses.

@@ -36,7 +36,7 @@ pub(crate) struct HingeAxes {
 }
 
 impl HingeAxes {
-    fn jacobians(&self) -> (DVec3, DVec3) {
+    pub fn jacobians(&self) -> (DVec3, DVec3) {
         (self.perpendicular_b[0].cross(self.axis_a), self.perpendicular_b[1].cross(self.axis_a))
     }
 

@@ -11,6 +11,7 @@
 //! | [`PointPart`] | 3 linear | two material points coincide |
 //! | [`AxisPart`] | 1 linear + angular | relative motion along a world direction (limits, motors, springs, contact rows) |
 //! | [`AngularAxisPart`] | 1 angular | relative rotation about a world axis (hinge/twist limits, motors, springs) |
+//! | [`AngularFrictionPart`] | 3 angular | relative rotation resisted by a bounded torque (joint friction) |
 //! | [`HingeRotationPart`] | 2 angular | an axis of a stays aligned with an axis of b |
 //! | [`RotationPart`] | 3 angular | the relative orientation is locked |
 //!
@@ -20,12 +21,14 @@
 //! impulse clamped to the row's bounds.
 
 mod angular_axis;
+mod angular_friction;
 mod axis;
 mod hinge_rotation;
 mod point;
 mod rotation;
 
 pub(crate) use angular_axis::AngularAxisPart;
+pub(crate) use angular_friction::AngularFrictionPart;
 pub(crate) use axis::{AxisJacobian, AxisPart};
 pub(crate) use hinge_rotation::{HingeAxes, HingeRotationPart};
 pub(crate) use point::PointPart;

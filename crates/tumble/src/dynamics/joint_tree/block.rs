@@ -1,0 +1,185 @@
+//! Small dense blocks (at most 6×6) and their `LDLᵀ` factorisation: the pieces of the joint
+//! tree's block elimination. A body's block is its 6×6 mass matrix; a joint's block has one row
+//! per constraint row (3 for a ball joint, up to 6 for a fixed joint).
+//!
+//! The symmetric blocks the tree factors are definite — positive for bodies, negative for
+//! joints — so `LDLᵀ` needs no pivoting. A pivot that vanishes (a degenerate joint, such as a
+//! hinge whose two axes are at right angles) gets a zero inverse: that direction takes no
+//! impulse in this pass, instead of an infinite one.
+
+/// Largest block dimension: six rows (a fixed joint) or six velocities (a body).
+pub(crate) const MAX_DIM: usize = 6;
+
+/// A `rows × cols` block, row-major in a fixed 6×6 array.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Block {
+    pub rows: usize,
+    pub cols: usize,
+    pub m: [[f64; MAX_DIM]; MAX_DIM],
+}
+
+/// A vector of up to six entries (a block's right-hand side or solution).
+pub(crate) type BlockVector = [f64; MAX_DIM];
+
+impl Block {
+    pub const fn zero(rows: usize, cols: usize) -> Block {
+        Block { rows, cols, m: [[0.0; MAX_DIM]; MAX_DIM] }
+    }
+
+    /// `self −= aᵀ b` (`a` is `k × rows`, `b` is `k × cols`).
+    pub fn sub_transpose_mul(&mut self, a: &Block, b: &Block) {
+        debug_assert!(a.rows == b.rows && a.cols == self.rows && b.cols == self.cols);
+        for k in 0..a.rows {
+            for i in 0..self.rows {
+                let aki = a.m[k][i];
+                if aki == 0.0 {
+                    continue;
+                }
+                for j in 0..self.cols {
+                    self.m[i][j] -= aki * b.m[k][j];
+                }
+            }
+        }
+    }
+
+    /// `y −= selfᵀ x` (`x` has `rows` entries, `y` has `cols`).
+    pub fn sub_transpose_mul_vector(&self, x: &BlockVector, y: &mut BlockVector) {
+        for (k, xk) in x.iter().enumerate().take(self.rows) {
+            for (j, yj) in y.iter_mut().enumerate().take(self.cols) {
+                *yj -= self.m[k][j] * xk;
+            }
+        }
+    }
+
+    /// `y −= self x` (`x` has `cols` entries, `y` has `rows`).
+    pub fn sub_mul_vector(&self, x: &BlockVector, y: &mut BlockVector) {
+        for (i, yi) in y.iter_mut().enumerate().take(self.rows) {
+            let row = &self.m[i];
+            *yi -= (0..self.cols).map(|j| row[j] * x[j]).sum::<f64>();
+        }
+    }
+}
+
+/// A square symmetric block factored as `L D Lᵀ` (unit lower `L`, diagonal `D`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Ldlt {
+    pub dim: usize,
+    /// `L` below the diagonal; the diagonal and above are unused.
+    l: [[f64; MAX_DIM]; MAX_DIM],
+    /// `1/Dᵢ`, or 0 for a pivot that vanished.
+    inv_d: BlockVector,
+}
+
+impl Ldlt {
+    /// Factors the symmetric block `a` (only its lower triangle is read). A pivot smaller than
+    /// `1e-12` of the largest diagonal entry counts as zero.
+    pub fn factor(a: &Block) -> Ldlt {
+        debug_assert_eq!(a.rows, a.cols);
+        let n = a.rows;
+        let scale = (0..n).map(|i| a.m[i][i].abs()).fold(0.0, f64::max);
+        let tolerance = 1e-12 * scale;
+        let mut l = [[0.0; MAX_DIM]; MAX_DIM];
+        let mut d = [0.0; MAX_DIM];
+        let mut inv_d = [0.0; MAX_DIM];
+        for j in 0..n {
+            let dj = a.m[j][j] - (0..j).map(|k| l[j][k] * l[j][k] * d[k]).sum::<f64>();
+            if dj.abs() <= tolerance || !dj.is_finite() {
+                // Degenerate direction: no impulse along it, and no coupling through it.
+                d[j] = 0.0;
+                inv_d[j] = 0.0;
+                continue;
+            }
+            d[j] = dj;
+            inv_d[j] = 1.0 / dj;
+            for i in j + 1..n {
+                let s = a.m[i][j] - (0..j).map(|k| l[i][k] * l[j][k] * d[k]).sum::<f64>();
+                l[i][j] = s * inv_d[j];
+            }
+        }
+        Ldlt { dim: n, l, inv_d }
+    }
+
+    /// Solves `A x = b` in place.
+    pub fn solve_in_place(&self, x: &mut BlockVector) {
+        let n = self.dim;
+        for i in 0..n {
+            x[i] -= (0..i).map(|k| self.l[i][k] * x[k]).sum::<f64>();
+        }
+        for i in 0..n {
+            x[i] *= self.inv_d[i];
+        }
+        for i in (0..n).rev() {
+            x[i] -= (i + 1..n).map(|k| self.l[k][i] * x[k]).sum::<f64>();
+        }
+    }
+
+    /// `A⁻¹ b` for a block `b` with `dim` rows, column by column.
+    pub fn solve_block(&self, b: &Block) -> Block {
+        debug_assert_eq!(b.rows, self.dim);
+        let mut out = Block::zero(b.rows, b.cols);
+        for j in 0..b.cols {
+            let mut column = [0.0; MAX_DIM];
+            for i in 0..b.rows {
+                column[i] = b.m[i][j];
+            }
+            self.solve_in_place(&mut column);
+            for i in 0..b.rows {
+                out.m[i][j] = column[i];
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn block(rows: &[&[f64]]) -> Block {
+        let mut b = Block::zero(rows.len(), rows[0].len());
+        for (i, row) in rows.iter().enumerate() {
+            b.m[i][..row.len()].copy_from_slice(row);
+        }
+        b
+    }
+
+    fn mul(a: &Block, x: &BlockVector) -> BlockVector {
+        let mut y = [0.0; MAX_DIM];
+        for i in 0..a.rows {
+            y[i] = (0..a.cols).map(|j| a.m[i][j] * x[j]).sum();
+        }
+        y
+    }
+
+    #[test]
+    fn solves_positive_and_negative_definite_blocks() {
+        let spd = block(&[&[4.0, 1.0, 0.5], &[1.0, 3.0, 0.2], &[0.5, 0.2, 2.0]]);
+        let mut nd = spd;
+        for row in nd.m.iter_mut() {
+            for v in row.iter_mut() {
+                *v = -*v;
+            }
+        }
+        for a in [spd, nd] {
+            let f = Ldlt::factor(&a);
+            let b = [1.0, -2.0, 0.5, 0.0, 0.0, 0.0];
+            let mut x = b;
+            f.solve_in_place(&mut x);
+            let r = mul(&a, &x);
+            for i in 0..3 {
+                assert!((r[i] - b[i]).abs() < 1e-14, "residual {i}: {}", r[i] - b[i]);
+            }
+        }
+    }
+
+    #[test]
+    fn a_vanishing_pivot_takes_no_impulse() {
+        // Rank 1: the second direction is degenerate and must come out zero, not infinite.
+        let a = block(&[&[1.0, 1.0], &[1.0, 1.0]]);
+        let mut x = [2.0, 2.0, 0.0, 0.0, 0.0, 0.0];
+        Ldlt::factor(&a).solve_in_place(&mut x);
+        assert!(x.iter().all(|v| v.is_finite()));
+        assert_eq!(x[1], 0.0);
+        assert!((x[0] - 2.0).abs() < 1e-15);
+    }
+}
