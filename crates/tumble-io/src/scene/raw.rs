@@ -40,6 +40,7 @@ pub(super) struct RawWorld {
     pub joint_hertz: Option<Number>,
     pub joint_damping_ratio: Option<Number>,
     pub steady_load_time: Option<Number>,
+    pub joint_trees: Option<bool>,
     pub sleep: Option<bool>,
 }
 

@@ -71,6 +71,9 @@ pub(crate) struct Ldlt {
 }
 
 impl Ldlt {
+    /// The factor of an empty block.
+    pub const EMPTY: Ldlt = Ldlt { dim: 0, l: [[0.0; MAX_DIM]; MAX_DIM], inv_d: [0.0; MAX_DIM] };
+
     /// Factors the symmetric block `a` (only its lower triangle is read). A pivot smaller than
     /// `1e-12` of the largest diagonal entry counts as zero.
     pub fn factor(a: &Block) -> Ldlt {
@@ -100,34 +103,61 @@ impl Ldlt {
     }
 
     /// Solves `A x = b` in place.
+    #[inline]
     pub fn solve_in_place(&self, x: &mut BlockVector) {
         let n = self.dim;
-        for i in 0..n {
-            x[i] -= (0..i).map(|k| self.l[i][k] * x[k]).sum::<f64>();
+        for i in 1..n {
+            let mut s = x[i];
+            for k in 0..i {
+                s -= self.l[i][k] * x[k];
+            }
+            x[i] = s;
         }
         for i in 0..n {
             x[i] *= self.inv_d[i];
         }
-        for i in (0..n).rev() {
-            x[i] -= (i + 1..n).map(|k| self.l[k][i] * x[k]).sum::<f64>();
+        for i in (0..n.saturating_sub(1)).rev() {
+            let mut s = x[i];
+            for k in i + 1..n {
+                s -= self.l[k][i] * x[k];
+            }
+            x[i] = s;
         }
     }
 
-    /// `A⁻¹ b` for a block `b` with `dim` rows, column by column.
+    /// `A⁻¹ b` for a block `b` with `dim` rows: the same three sweeps on all columns at once.
     pub fn solve_block(&self, b: &Block) -> Block {
         debug_assert_eq!(b.rows, self.dim);
-        let mut out = Block::zero(b.rows, b.cols);
-        for j in 0..b.cols {
-            let mut column = [0.0; MAX_DIM];
-            for i in 0..b.rows {
-                column[i] = b.m[i][j];
-            }
-            self.solve_in_place(&mut column);
-            for i in 0..b.rows {
-                out.m[i][j] = column[i];
+        let (n, cols) = (self.dim, b.cols);
+        let mut x = *b;
+        for i in 1..n {
+            for k in 0..i {
+                let lik = self.l[i][k];
+                if lik != 0.0 {
+                    let (head, tail) = x.m.split_at_mut(i);
+                    for j in 0..cols {
+                        tail[0][j] -= lik * head[k][j];
+                    }
+                }
             }
         }
-        out
+        for i in 0..n {
+            for j in 0..cols {
+                x.m[i][j] *= self.inv_d[i];
+            }
+        }
+        for i in (0..n.saturating_sub(1)).rev() {
+            for k in i + 1..n {
+                let lki = self.l[k][i];
+                if lki != 0.0 {
+                    let (head, tail) = x.m.split_at_mut(k);
+                    for j in 0..cols {
+                        head[i][j] -= lki * tail[0][j];
+                    }
+                }
+            }
+        }
+        x
     }
 }
 

@@ -75,7 +75,7 @@ impl Node {
             coupling: Block::zero(0, 0),
             diagonal: Block::zero(dim, dim),
             multiplier: Block::zero(0, 0),
-            factor: Ldlt::factor(&Block::zero(0, 0)),
+            factor: Ldlt::EMPTY,
             x: [0.0; MAX_DIM],
         }
     }
