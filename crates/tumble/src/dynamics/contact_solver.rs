@@ -18,10 +18,11 @@
 //! - **Friction**: Coulomb's cone for the whole manifold at its centre (contact_friction.rs).
 //! - **Rolling and torsional friction**: angular rows on the relative angular velocity, clamped by
 //!   `μ_roll·Σλ_n` and `μ_torsion·Σλ_n` (coefficients in metres: lever arms of the resistance).
-//! - **Restitution**: after the substeps, points whose approach speed when their row engaged
-//!   exceeded the threshold get the normal impulses (solved together) that make
-//!   `v_n = −e·v_n⁰` (the speed at engagement, not at the start of the step: gravity speeds a
-//!   falling body up in between).
+//! - **Restitution**: points whose approach speed when their row engaged exceeded the threshold
+//!   get the normal impulses (solved together) that make `v_n = −e·v_n⁰`, with `v_n⁰` the speed at
+//!   engagement (not at the start of the step: gravity speeds a falling body up in between, and a
+//!   spinning corner's normal speed changes). They bounce after the relax pass of the substep in
+//!   which the approach stops, or at the end of the step (docs/solver.md, "Restitution").
 //! - **Anchors**: on corners, edges and faces the contact point is a material point that turns
 //!   with the body; on round surfaces (spheres, capsules) it keeps its step-start offset, so a
 //!   rolling ball's contact stays under it. Impulses act at one world point shared by both bodies
@@ -98,8 +99,13 @@ struct PointConstraint {
     /// Low-pass of `normal_impulse` over substeps: the steady load (see `ContactConstraint::solve`).
     steady_normal_impulse: f64,
     max_normal_impulse: f64,
-    /// Normal velocity at the start of the step (negative = approaching).
+    /// Normal velocity when the row engaged this step, before its impulse acted (negative =
+    /// approaching; 0 until it engages).
     relative_velocity: f64,
+    /// The restitution impulse given this step (one-off, not part of the per-substep impulse).
+    restitution_impulse: f64,
+    /// The point has bounced this step.
+    bounced: bool,
 }
 
 impl PointConstraint {
@@ -140,6 +146,8 @@ impl PointConstraint {
         steady_normal_impulse: 0.0,
         max_normal_impulse: 0.0,
         relative_velocity: 0.0,
+        restitution_impulse: 0.0,
+        bounced: false,
     };
 }
 
@@ -288,7 +296,6 @@ impl ContactConstraint {
             let r_b = input.point_world
                 + if radii.1 > 0.0 { 0.5 * input.separation * normal } else { DVec3::ZERO }
                 - com_b;
-            let relative_velocity = normal.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
             let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
             *pc = PointConstraint {
                 softness,
@@ -300,7 +307,9 @@ impl ContactConstraint {
                 normal_impulse: if ctx.warm_starting { input.impulse.normal } else { 0.0 },
                 steady_normal_impulse: if ctx.warm_starting { input.impulse.steady_normal } else { 0.0 },
                 max_normal_impulse: 0.0,
-                relative_velocity,
+                relative_velocity: 0.0,
+                restitution_impulse: 0.0,
+                bounced: false,
             };
         }
         let count = constraint.point_count;
@@ -479,9 +488,16 @@ impl ContactConstraint {
         }
     }
 
-    /// Stage "restitution": after the substeps, make points that approached faster than the
-    /// threshold separate at `e` times their approach speed.
-    pub fn apply_restitution(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext) {
+    /// Stage "restitution", after every substep's relax pass: points that approached faster than
+    /// the threshold separate at `e` times their approach speed, as soon as the approach is
+    /// stopped (`last`: at the end of the step in any case). See docs/solver.md, "Restitution".
+    pub fn apply_restitution(
+        &mut self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        ctx: &StepContext,
+        last: bool,
+    ) {
         let radii = self.radii;
         let e = self.material.restitution;
         if e == 0.0 {
@@ -495,30 +511,45 @@ impl ContactConstraint {
         let mut block = NormalBlock::default();
         let mut accumulated = [0.0; MAX_POINTS];
         let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+        let mut closed = last;
         for (i, pc) in self.points[..self.point_count].iter().enumerate() {
-            if pc.relative_velocity > -ctx.restitution_threshold || pc.max_normal_impulse == 0.0 {
+            if pc.bounced || pc.relative_velocity > -ctx.restitution_threshold || pc.max_normal_impulse == 0.0
+            {
                 continue;
             }
-            let (r_a, r_b) = shared_levers(pc.anchors(radii, self.normal, a, b), self.com_offset, a, b);
+            let material = pc.anchors(radii, self.normal, a, b);
+            let (r_a, r_b) = shared_levers(material, self.com_offset, a, b);
             let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
+            // The impact is over once the surfaces touch or the row has stopped the approach.
+            closed |= vn >= 0.0 || pc.separation(material, a, b, n) <= SOFT_BAND;
             let row = block.count;
             rows[row] = i;
             levers[row] = (r_a, r_b);
             block.rhs[row] = -(vn + e * pc.relative_velocity);
-            accumulated[row] = pc.normal_impulse;
+            accumulated[row] = pc.normal_impulse + pc.restitution_impulse;
             block.count += 1;
         }
-        for row in 0..block.count {
-            for col in 0..block.count {
-                block.matrix[row][col] = self.normal_coupling[rows[row]][rows[col]];
+        if block.count == 0 || !closed {
+            return;
+        }
+        // `K` of the levers the impulses act at now, not the step-start `normal_coupling`: with
+        // the latter a spinning box's corner missed its target speed by 3% (docs/solver.md).
+        let count = block.count;
+        for (row, &(ra_i, rb_i)) in levers[..count].iter().enumerate() {
+            for (col, &(ra_j, rb_j)) in levers[..count].iter().enumerate() {
+                block.matrix[row][col] = a.inv_mass
+                    + b.inv_mass
+                    + ra_i.cross(n).dot(a.inv_inertia * ra_j.cross(n))
+                    + rb_i.cross(n).dot(b.inv_inertia * rb_j.cross(n));
             }
         }
         let Some(deltas) = block.solve(&accumulated) else { return };
         for row in 0..block.count {
             let pc = &mut self.points[rows[row]];
             let applied = deltas[row];
-            pc.normal_impulse = (pc.normal_impulse + applied).max(0.0);
+            pc.restitution_impulse += applied;
             pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
+            pc.bounced = true;
             let (r_a, r_b) = levers[row];
             Self::apply(a, b, r_a, r_b, applied * n);
         }
@@ -527,7 +558,7 @@ impl ContactConstraint {
     /// Stage "store impulses": what the next step warm-starts from, per point in input order.
     pub fn impulses(&self) -> impl Iterator<Item = ContactImpulse> + '_ {
         self.points[..self.point_count].iter().map(|pc| ContactImpulse {
-            normal: pc.normal_impulse,
+            normal: (pc.normal_impulse + pc.restitution_impulse).max(0.0),
             tangent_world: self.friction.tangent_impulse / self.point_count as f64,
             twist: self.friction.twist_impulse / self.point_count as f64,
             max_normal: pc.max_normal_impulse,

@@ -9,7 +9,7 @@
 //! | per substep: solve | soft constraints with position bias (push apart / pull together) |
 //! | per substep: integrate positions | `x += h v`; rotation by the exact free-body flow |
 //! | per substep: relax | the same constraints, rigid and without bias, to remove the bias energy |
-//! | restitution | bounce where the approach speed was above the threshold |
+//! | per substep: restitution | bounce where the approach was faster than the threshold and has stopped (at the last substep: wherever it was) |
 //! | store impulses | keep impulses for the next step's warm start; joint breaking |
 //!
 //! Substepping with soft constraints gives the stiffness of many iterations at the price of one
@@ -254,7 +254,7 @@ impl World {
             ));
         }
 
-        for _ in 0..ctx.substeps {
+        for substep in 0..ctx.substeps {
             for body in bodies.iter_mut() {
                 body.integrate_velocity(ctx.gravity, ctx.h);
             }
@@ -286,13 +286,14 @@ impl World {
                     c.update_steady_load(ctx.steady_load_rate);
                 }
             }
+            let last = substep + 1 == ctx.substeps;
+            for c in contacts.iter_mut() {
+                let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
+                c.apply_restitution(a, b, &ctx, last);
+            }
         }
 
-        // Restitution, then keep the impulses for the next step's warm start.
-        for c in contacts.iter_mut() {
-            let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
-            c.apply_restitution(a, b, &ctx);
-        }
+        // Keep the impulses for the next step's warm start.
         for c in &contacts {
             if let Some(contact) = self.contact_manager.contacts.get_mut(&c.key) {
                 for (slot, impulse) in contact.impulses.iter_mut().zip(c.impulses()) {
