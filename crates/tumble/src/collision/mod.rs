@@ -29,6 +29,7 @@ pub mod sat;
 pub mod segment;
 pub mod static_pairs;
 pub mod support;
+pub mod time_of_impact;
 pub mod triangle;
 
 pub use aabb::{shape_aabb, Aabb};
