@@ -34,10 +34,12 @@
 //! surface, and keeps its velocity: the next step's contact makes the bounce, from the right side.
 //!
 //! A leaf already within `s` of a shape at the start of the step (resting on it, sliding along it,
-//! or just moved back here) is swept to half its present gap instead; one touching or overlapping
-//! it already is swept as a small ball at its centre (a quarter of its smallest half extent), so
-//! that a body resting on the ground does not stop there, yet its centre still cannot pass
-//! through (Box2D's fallback).
+//! or just moved back here) would hit at once and never move again. Instead, one that is apart is
+//! swept to half its present gap; one touching or overlapping is swept as a small ball at its
+//! centre (a quarter of its smallest half extent), so that a body resting on the ground can slide
+//! yet its centre cannot pass through (Box2D's fallback), and it may not end the step deeper than
+//! `s` inside the shape (or deeper than it started, if it started deeper): when it would, it goes
+//! back to the last fraction within that depth (`depth_limit`).
 //!
 //! Bodies that are not bullets cost one flag test per step and allocate nothing.
 
