@@ -19,8 +19,9 @@ use std::path::{Path, PathBuf};
 use tumble::{DVec3, SnapshotError, World};
 
 const MAGIC: &[u8; 8] = b"TUMBLECP";
-/// Bumped whenever [`Checkpoint`] changes shape.
-const VERSION: u32 = 1;
+/// Bumped whenever [`Checkpoint`] changes shape (including the world inside it). 2: bodies carry
+/// the `bullet` flag.
+const VERSION: u32 = 2;
 
 /// Running maxima of the conservation checks and the reference values they compare with.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]

@@ -92,6 +92,18 @@ fn filter_and_sensor_keys_reach_the_body() {
 }
 
 #[test]
+fn bullet_key_reaches_the_body() {
+    let base = "[[body]]\nname = \"t\"\nshape = { type = \"sphere\", radius = 1.0 }\n";
+    let def = &Scene::from_str(&format!("{base}bullet = true\n"), FILE).unwrap().bodies[0].def;
+    assert!(def.bullet);
+    assert!(!Scene::from_str(base, FILE).unwrap().bodies[0].def.bullet);
+    let world = Scene::from_str(&format!("{base}bullet = true\n"), FILE).unwrap().build_world().unwrap();
+    assert!(world.world.bodies().all(|(_, b)| b.is_bullet()));
+    expect_error(&format!("{base}bullet = \"yes\"\n"), 4, &["body \"t\": bullet", "invalid type"]);
+    expect_error(&format!("{base}bulet = true\n"), 4, &["bulet"]);
+}
+
+#[test]
 fn world_solver_keys_reach_the_world() {
     let text = format!(
         "[world]\nsubsteps = 8\nsolve_iterations = 2\nrelax_iterations = 0\ncontact_hertz = 20.0\njoint_hertz = 40.0\nsleep = false\n{TWO_BODIES}"

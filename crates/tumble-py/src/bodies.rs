@@ -47,6 +47,8 @@ pub struct BodyArgs<'a, 'py> {
     /// Collision group and mask bits.
     pub filter: tumble::CollisionFilter,
     pub sensor: bool,
+    /// Swept against static geometry each step.
+    pub bullet: bool,
 }
 
 impl BodyArgs<'_, '_> {
@@ -72,6 +74,7 @@ impl BodyArgs<'_, '_> {
             material: self.material,
             filter: self.filter,
             is_sensor: self.sensor,
+            bullet: self.bullet,
         })
     }
 }
@@ -253,6 +256,16 @@ impl Body {
     #[getter]
     fn is_sensor(&self, py: Python<'_>) -> PyResult<bool> {
         self.read(py, |b| b.is_sensor())
+    }
+    /// True for a bullet: swept against static geometry after each step, so it cannot pass
+    /// through thin walls. Settable.
+    #[getter]
+    fn bullet(&self, py: Python<'_>) -> PyResult<bool> {
+        self.read(py, |b| b.is_bullet())
+    }
+    #[setter]
+    fn set_bullet(&self, py: Python<'_>, value: bool) -> PyResult<()> {
+        self.write(py, |w, id| w.set_bullet(id, value))
     }
     /// False while the body sleeps.
     #[getter]

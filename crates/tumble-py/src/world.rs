@@ -120,12 +120,14 @@ impl World {
     /// Adds a body and returns its handle. Checked in full by the core first; on error nothing
     /// changes. Give `shape` with `density` (kg/m³) or `mass` (kg), or `mass_properties`.
     /// `friction`, `restitution`, `rolling_friction` and `torsional_friction` make the surface
-    /// material; `group`/`mask` the collision filter bits; a `sensor` reports overlaps only.
+    /// material; `group`/`mask` the collision filter bits; a `sensor` reports overlaps only; a
+    /// `bullet` is swept against static geometry each step, so it cannot pass through thin walls.
     #[pyo3(signature = (shape = None, *, density = 1000.0, mass = None, mass_properties = None,
         position = None, orientation = None, linear_velocity = None, angular_velocity = None,
         kind = "dynamic", name = "", linear_damping = 0.0, angular_damping = 0.0,
         gravity_scale = 1.0, allow_sleep = true, friction = 0.6, restitution = 0.0,
-        rolling_friction = 0.0, torsional_friction = 0.0, group = 1, mask = 4294967295, sensor = false))]
+        rolling_friction = 0.0, torsional_friction = 0.0, group = 1, mask = 4294967295, sensor = false,
+        bullet = false))]
     #[allow(clippy::too_many_arguments)]
     fn add_body(
         &mut self,
@@ -150,6 +152,7 @@ impl World {
         group: u32,
         mask: u32,
         sensor: bool,
+        bullet: bool,
     ) -> PyResult<BodyId> {
         let def = BodyArgs {
             shape,
@@ -169,6 +172,7 @@ impl World {
             material: tumble::Material { friction, restitution, rolling_friction, torsional_friction },
             filter: tumble::CollisionFilter { group, mask },
             sensor,
+            bullet,
         }
         .into_def()?;
         Ok(BodyId(self.inner.add_body(def).py()?))

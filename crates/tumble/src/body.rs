@@ -73,6 +73,10 @@ pub struct BodyDef {
     pub filter: CollisionFilter,
     /// A sensor reports overlaps but makes no contact force.
     pub is_sensor: bool,
+    /// Sweep this (dynamic) body's motion against static geometry after each step, so it cannot
+    /// pass through a wall that its speculative contacts missed (`continuous.rs`). Default false.
+    #[serde(default)]
+    pub bullet: bool,
 }
 
 impl Default for BodyDef {
@@ -95,6 +99,7 @@ impl Default for BodyDef {
             material: Material::default(),
             filter: CollisionFilter::default(),
             is_sensor: false,
+            bullet: false,
         }
     }
 }
@@ -139,6 +144,8 @@ pub struct Body {
     pub(crate) material: Material,
     pub(crate) filter: CollisionFilter,
     pub(crate) is_sensor: bool,
+    /// Swept against static geometry after each step (`continuous.rs`).
+    pub(crate) bullet: bool,
     /// Broad-phase proxies of the body's leaf shapes (one per compound child).
     pub(crate) proxies: Vec<ProxyKey>,
     /// How long the body has been slower than the sleep thresholds, s.
@@ -182,6 +189,7 @@ impl Body {
             material: def.material,
             filter: def.filter,
             is_sensor: def.is_sensor,
+            bullet: def.bullet,
             proxies: Vec::new(),
             sleep_time: 0.0,
             sleeping_island: None,
@@ -310,6 +318,12 @@ impl Body {
 
     pub fn is_sensor(&self) -> bool {
         self.is_sensor
+    }
+
+    /// True when the body is a bullet: a dynamic bullet's motion is swept against static geometry
+    /// after each step (`World::set_bullet`).
+    pub fn is_bullet(&self) -> bool {
+        self.bullet
     }
 
     /// False while the body sleeps (it is then not simulated until something wakes it).

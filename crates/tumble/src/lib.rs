@@ -7,6 +7,7 @@
 
 pub mod body;
 pub mod collision;
+pub mod continuous;
 pub mod dynamics;
 pub mod events;
 pub mod id;

@@ -18,6 +18,8 @@ pub enum Phase {
     Wake,
     /// The constraint solve: substeps of velocities, joints, contacts and positions.
     Solve,
+    /// Sweeping bullets against static geometry and moving back those that went through.
+    Continuous,
     /// Moving the proxies to the solved poses, so queries between steps see them.
     Finalize,
     /// Sleep timers, islands and putting islands to sleep.
@@ -25,12 +27,13 @@ pub enum Phase {
 }
 
 impl Phase {
-    pub const ALL: [Phase; 7] = [
+    pub const ALL: [Phase; 8] = [
         Phase::Proxies,
         Phase::BroadPhase,
         Phase::NarrowPhase,
         Phase::Wake,
         Phase::Solve,
+        Phase::Continuous,
         Phase::Finalize,
         Phase::Sleep,
     ];
@@ -42,6 +45,7 @@ impl Phase {
             Phase::NarrowPhase => "narrow phase",
             Phase::Wake => "islands/wake",
             Phase::Solve => "solve",
+            Phase::Continuous => "continuous",
             Phase::Finalize => "finalize proxies",
             Phase::Sleep => "sleep",
         }
@@ -54,7 +58,7 @@ pub struct StepProfile {
     /// Steps summed.
     pub steps: u64,
     /// Time per phase, indexed like [`Phase::ALL`].
-    pub phases: [Duration; 7],
+    pub phases: [Duration; 8],
     /// Whole steps, including what no phase covers (argument checks, clearing forces, the clock).
     pub total: Duration,
 }

@@ -3,8 +3,8 @@
 //! added to the world's profile (`profile.rs`).
 //!
 //! The pipeline: broad and narrow phase, waking, the non-finite check, the soft-step solve
-//! (forces, gravity, contacts, joints, exact rotation update, in substeps), the check again, sleep,
-//! then accumulators are cleared.
+//! (forces, gravity, contacts, joints, exact rotation update, in substeps), the check again, the
+//! continuous sweep of bullets against static geometry, sleep, then accumulators are cleared.
 
 use std::time::Instant;
 
@@ -51,6 +51,11 @@ impl World {
         self.solve(dt);
         self.isolate_non_finite_bodies();
         self.profile.lap(Phase::Solve, &mut clock);
+
+        // Bullets that went through static geometry despite their contacts go back to the time
+        // of impact (continuous.rs).
+        self.solve_continuous();
+        self.profile.lap(Phase::Continuous, &mut clock);
 
         // Move the proxies of the bodies that moved, so queries between steps see the current
         // poses (query.rs); the next step's broad phase then finds them already in place.

@@ -100,6 +100,9 @@ pub struct World {
     /// the allocation (`non_finite.rs`).
     #[serde(skip)]
     pub(crate) step_start_states: Vec<(usize, crate::body::BodyState)>,
+    /// Static proxies under a bullet's sweep, refilled for each bullet (`continuous.rs`).
+    #[serde(skip)]
+    pub(crate) continuous_candidates: Vec<crate::collision::ProxyId>,
 }
 
 impl Default for World {
@@ -173,6 +176,7 @@ impl World {
             scratch: Default::default(),
             non_finite_events: Vec::new(),
             step_start_states: Vec::new(),
+            continuous_candidates: Vec::new(),
         })
     }
 
@@ -574,6 +578,16 @@ impl World {
         if body.kind != BodyKind::Static {
             body.state.angular_velocity = w;
         }
+        Ok(())
+    }
+
+    /// Makes the body a bullet or an ordinary body. After each step a dynamic bullet's motion is
+    /// swept from its pose at the start of the step to its pose at the end against static
+    /// geometry; if it passed through something, or ended deep inside it, it is moved back to
+    /// the time of impact (`continuous.rs`). Static and kinematic bodies keep the flag but are
+    /// never swept. Does not wake the body.
+    pub fn set_bullet(&mut self, id: BodyId, bullet: bool) -> Result<(), WorldError> {
+        self.body_mut(id)?.bullet = bullet;
         Ok(())
     }
 

@@ -175,6 +175,7 @@ impl Checker<'_> {
             material: self.material(at, raw)?,
             filter: self.filter(at, raw)?,
             is_sensor: raw.sensor.unwrap_or(defaults.is_sensor),
+            bullet: raw.bullet.unwrap_or(defaults.bullet),
             ..defaults
         };
         Ok(SceneBody { def, line: line_of(self.text, raw.name.span().start) })

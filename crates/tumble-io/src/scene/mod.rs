@@ -30,6 +30,7 @@
 //! group = 1                      # collision filter bits (u32): collide when
 //! mask = 4294967295              #   a.group & b.mask != 0 and b.group & a.mask != 0
 //! sensor = false                 # a sensor reports overlaps and makes no contact force
+//! bullet = false                 # swept against static geometry each step (fast bodies)
 //! ```
 //! Shapes: `sphere {radius}`, `box {half_extents}`, `capsule|cylinder|cone {radius, half_height}`
 //! (along local Z), `mesh {file}` (OBJ or STL, relative to the scene file), `hull {points}` or

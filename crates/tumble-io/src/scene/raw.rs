@@ -67,6 +67,7 @@ pub(super) struct RawBody {
     pub group: Option<Integer>,
     pub mask: Option<Integer>,
     pub sensor: Option<bool>,
+    pub bullet: Option<bool>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq, Debug)]

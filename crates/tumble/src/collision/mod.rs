@@ -3,7 +3,8 @@
 //! with face clipping for polyhedra, closed forms for spheres and capsules, contact manifolds and
 //! the shape-pair table `narrow_phase::collide`); static geometry (planes, height fields and
 //! triangle meshes with their BVH and the internal-edge rule); the contact manager that keeps contacts between
-//! steps; ray casts and filtering. See `docs/collision.md` for the derivations.
+//! steps; ray casts and filtering; the time of impact of a swept convex shape (for bullets,
+//! `continuous.rs`). See `docs/collision.md` for the derivations.
 //!
 //! Frames: every `Aabb` and `Ray` here is in world coordinates unless its name says `_local`.
 
@@ -29,6 +30,7 @@ pub mod sat;
 pub mod segment;
 pub mod static_pairs;
 pub mod support;
+pub mod time_of_impact;
 pub mod triangle;
 
 pub use aabb::{shape_aabb, Aabb};
