@@ -38,7 +38,23 @@ impl NormalBlock {
     /// released), or `None` when the system cannot be factored (the caller then solves the rows
     /// one by one).
     pub fn solve(&self, accumulated: &[f64; MAX_POINTS]) -> Option<[f64; MAX_POINTS]> {
+        self.solve_with(None, accumulated)
+    }
+
+    /// `solve`, with the factor of the whole of `matrix` when the caller has it: if no row is
+    /// released, that one solve is the answer.
+    pub fn solve_with(
+        &self,
+        factor: Option<&Cholesky>,
+        accumulated: &[f64; MAX_POINTS],
+    ) -> Option<[f64; MAX_POINTS]> {
         let n = self.count;
+        if let Some(factor) = factor.filter(|_| n > 1) {
+            let x = factor.solve(&self.rhs);
+            if (0..n).all(|i| accumulated[i] + x[i] >= 0.0) {
+                return Some(x);
+            }
+        }
         if n == 1 {
             // One row: the scalar soft update, clamped.
             let k = self.matrix[0][0];
@@ -92,59 +108,81 @@ impl NormalBlock {
     }
 }
 
-/// Solves the symmetric positive (semi-)definite system `m x = b` of size `n` by Cholesky
-/// factorisation, with a relative regularisation of `1e-9` of the largest diagonal entry so that
-/// the singular systems of coplanar points give their least-norm solution. `None` when the matrix
-/// is not positive (a degenerate manifold).
+/// The Cholesky factor `L` (`m + εI = L Lᵀ`) of a symmetric positive (semi-)definite system of up
+/// to four rows, with a relative regularisation `ε` of `1e-9` of the largest diagonal entry so that
+/// the singular systems of coplanar points give their least-norm solution. A manifold's `K` is
+/// fixed for the step (it is built from the step-start anchors), so the factor is kept and reused
+/// by every pass whose rows have the same compliances (`ContactConstraint::solve_normals`).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
+pub(crate) struct Cholesky {
+    l: [[f64; MAX_POINTS]; MAX_POINTS],
+    n: usize,
+}
+
+impl Cholesky {
+    /// `None` when the matrix is not positive (a degenerate manifold).
+    pub fn factor(m: &[[f64; MAX_POINTS]; MAX_POINTS], n: usize) -> Option<Cholesky> {
+        let mut l = *m;
+        if n == 0 {
+            return Some(Cholesky { l, n });
+        }
+        let scale = (0..n).map(|i| m[i][i]).fold(0.0_f64, f64::max);
+        if !(scale > 0.0) || !scale.is_finite() {
+            return None;
+        }
+        let epsilon = 1e-9 * scale;
+        // In place: the lower triangle becomes L.
+        for j in 0..n {
+            let mut d = l[j][j] + epsilon;
+            for k in 0..j {
+                d -= l[j][k] * l[j][k];
+            }
+            if !(d > 0.0) {
+                return None;
+            }
+            let l_jj = d.sqrt();
+            l[j][j] = l_jj;
+            for i in j + 1..n {
+                let mut s = l[i][j];
+                for k in 0..j {
+                    s -= l[i][k] * l[j][k];
+                }
+                l[i][j] = s / l_jj;
+            }
+        }
+        Some(Cholesky { l, n })
+    }
+
+    /// `x` with `L Lᵀ x = b`.
+    pub fn solve(&self, b: &[f64; MAX_POINTS]) -> [f64; MAX_POINTS] {
+        let (l, n) = (&self.l, self.n);
+        let mut y = [0.0; MAX_POINTS];
+        for i in 0..n {
+            let mut s = b[i];
+            for k in 0..i {
+                s -= l[i][k] * y[k];
+            }
+            y[i] = s / l[i][i];
+        }
+        let mut x = [0.0; MAX_POINTS];
+        for i in (0..n).rev() {
+            let mut s = y[i];
+            for k in i + 1..n {
+                s -= l[k][i] * x[k];
+            }
+            x[i] = s / l[i][i];
+        }
+        x
+    }
+}
+
+/// Solves `m x = b` of size `n` (see `Cholesky`); `None` when `m` is not positive.
 fn solve_spd(
     m: &mut [[f64; MAX_POINTS]; MAX_POINTS],
     b: &mut [f64; MAX_POINTS],
     n: usize,
 ) -> Option<[f64; MAX_POINTS]> {
-    let mut x = [0.0; MAX_POINTS];
-    if n == 0 {
-        return Some(x);
-    }
-    let scale = (0..n).map(|i| m[i][i]).fold(0.0_f64, f64::max);
-    if !(scale > 0.0) || !scale.is_finite() {
-        return None;
-    }
-    let epsilon = 1e-9 * scale;
-    // In place: the lower triangle becomes L with m = L Lᵀ.
-    for j in 0..n {
-        let mut d = m[j][j] + epsilon;
-        for k in 0..j {
-            d -= m[j][k] * m[j][k];
-        }
-        if !(d > 0.0) {
-            return None;
-        }
-        let l_jj = d.sqrt();
-        m[j][j] = l_jj;
-        for i in j + 1..n {
-            let mut s = m[i][j];
-            for k in 0..j {
-                s -= m[i][k] * m[j][k];
-            }
-            m[i][j] = s / l_jj;
-        }
-    }
-    // L y = b, then Lᵀ x = y.
-    for i in 0..n {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= m[i][k] * b[k];
-        }
-        b[i] = s / m[i][i];
-    }
-    for i in (0..n).rev() {
-        let mut s = b[i];
-        for k in i + 1..n {
-            s -= m[k][i] * x[k];
-        }
-        x[i] = s / m[i][i];
-    }
-    Some(x)
+    Some(Cholesky::factor(m, n)?.solve(b))
 }
 
 #[cfg(test)]

@@ -32,7 +32,7 @@
 //! at every substep's warm start.
 
 use crate::collision::ProxyKey;
-use crate::dynamics::contact_block::{NormalBlock, MAX_POINTS};
+use crate::dynamics::contact_block::{Cholesky, NormalBlock, MAX_POINTS};
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
 use crate::dynamics::softness::Softness;
@@ -243,6 +243,39 @@ pub(crate) struct ContactConstraint {
     rolling_mass: DMat3,
     rolling_impulse: DVec3,
     torsional_impulse: f64,
+    /// The factor of the normal block, per pass (relax, solve), kept for the step: `K` is fixed
+    /// for the step and the rows' compliances are fixed while they stay soft or speculative.
+    block_factors: [BlockFactor; 2],
+}
+
+/// A kept factor of a manifold's normal block and the rows it was made for.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
+struct BlockFactor {
+    valid: bool,
+    /// Bit `i` set when row `i` is soft (has a compliance).
+    soft_rows: u8,
+    factor: Option<Cholesky>,
+}
+
+/// Applies the impulses `pᵢ` at levers `(r_aᵢ, r_bᵢ)` (`−pᵢ` to a, `+pᵢ` to b) at once: one
+/// inverse-inertia product per body instead of one per point.
+#[inline]
+fn apply_point_impulses(
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    levers: &[(DVec3, DVec3)],
+    impulses: &[DVec3],
+) {
+    let (mut p, mut torque_a, mut torque_b) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    for (&(r_a, r_b), &pi) in levers.iter().zip(impulses) {
+        p += pi;
+        torque_a += r_a.cross(pi);
+        torque_b += r_b.cross(pi);
+    }
+    a.v -= a.inv_mass * p;
+    a.w -= a.inv_inertia * torque_a;
+    b.v += b.inv_mass * p;
+    b.w += b.inv_inertia * torque_b;
 }
 
 impl ContactConstraint {
@@ -285,6 +318,7 @@ impl ContactConstraint {
             rolling_mass: tangent_block_inverse(a.inv_inertia + b.inv_inertia, normal),
             rolling_impulse: DVec3::ZERO,
             torsional_impulse: 0.0,
+            block_factors: Default::default(),
         };
         for (pc, input) in constraint.points.iter_mut().zip(points) {
             // The narrow phase's point is midway between the surfaces. A round body is pushed at
@@ -344,10 +378,14 @@ impl ContactConstraint {
     /// Stage "warm start": apply the accumulated impulses again.
     pub fn warm_start(&self, a: &mut SolverBody, b: &mut SolverBody) {
         let radii = self.radii;
-        for pc in &self.points[..self.point_count] {
-            let (r_a, r_b) = shared_levers(pc.anchors(radii, self.normal, a, b), self.com_offset, a, b);
-            Self::apply(a, b, r_a, r_b, pc.normal_impulse * self.normal);
+        let count = self.point_count;
+        let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+        let mut impulses = [DVec3::ZERO; MAX_POINTS];
+        for (i, pc) in self.points[..count].iter().enumerate() {
+            levers[i] = shared_levers(pc.anchors(radii, self.normal, a, b), self.com_offset, a, b);
+            impulses[i] = pc.normal_impulse * self.normal;
         }
+        apply_point_impulses(a, b, &levers[..count], &impulses[..count]);
         self.friction.warm_start(radii, self.normal, self.com_offset, a, b);
         let angular = self.rolling_impulse + self.torsional_impulse * self.normal;
         a.w -= a.inv_inertia * angular;
@@ -422,6 +460,7 @@ impl ContactConstraint {
         let mut block = NormalBlock { count, ..Default::default() };
         let mut accumulated = [0.0; MAX_POINTS];
         let mut anchors = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+        let mut soft_rows = 0u8;
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let material = pc.anchors(radii, self.normal, a, b);
             let s = pc.separation(material, a, b, n);
@@ -454,12 +493,19 @@ impl ContactConstraint {
             // integral term on top of the spring–damper).
             let k_ii = self.normal_coupling[i][i];
             let gamma = if mass_scale > 0.0 { k_ii * impulse_scale / mass_scale } else { 0.0 };
+            if gamma > 0.0 {
+                soft_rows |= 1 << i;
+            }
             block.rhs[i] = -(vn + bias) - gamma * (pc.normal_impulse - steady);
             block.matrix[i] = self.normal_coupling[i];
             block.matrix[i][i] += gamma;
             accumulated[i] = pc.normal_impulse;
         }
-        let deltas = block.solve(&accumulated).unwrap_or_else(|| {
+        let kept = &mut self.block_factors[usize::from(use_bias)];
+        if count > 1 && (!kept.valid || kept.soft_rows != soft_rows) {
+            *kept = BlockFactor { valid: true, soft_rows, factor: Cholesky::factor(&block.matrix, count) };
+        }
+        let deltas = block.solve_with(kept.factor.as_ref(), &accumulated).unwrap_or_else(|| {
             // One by one, each row against its own effective mass.
             let mut deltas = [0.0; MAX_POINTS];
             for i in 0..count {
@@ -469,14 +515,15 @@ impl ContactConstraint {
             deltas
         });
         let mut total_normal = 0.0;
+        let mut impulses = [DVec3::ZERO; MAX_POINTS];
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let applied = deltas[i];
             pc.normal_impulse = (pc.normal_impulse + applied).max(0.0);
             pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
             total_normal += pc.normal_impulse;
-            let (r_a, r_b) = anchors[i];
-            Self::apply(a, b, r_a, r_b, applied * n);
+            impulses[i] = applied * n;
         }
+        apply_point_impulses(a, b, &anchors[..count], &impulses[..count]);
         total_normal
     }
 
