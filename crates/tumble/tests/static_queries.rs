@@ -11,7 +11,7 @@ use static_support::{flat_heightfield, grid, grid_floor};
 use tumble::collision::narrow_phase::{collide, PairCache};
 use tumble::collision::ray::ray_cast_mesh_local;
 use tumble::collision::{ray_cast_shape, shape_aabb, Ray};
-use tumble::{DQuat, DVec3, HeightField, Plane, Shape, Transform, TriMesh};
+use tumble::{Cuboid, Cylinder, DQuat, DVec3, HeightField, Plane, Shape, Transform, TriMesh};
 
 const MARGIN: f64 = 0.02;
 
@@ -38,6 +38,56 @@ fn heightfield_triangles(h: &HeightField) -> (Vec<DVec3>, Vec<[u32; 3]>) {
 
 fn bumpy(x: f64, y: f64) -> f64 {
     0.3 * (1.3 * x).sin() * (0.9 * y).cos() + 0.1 * x
+}
+
+/// The shrunk case of `floors_never_report_penetration_for_separated_shapes`, kept as a plain test:
+/// a wide, flat cylinder whose axis is tipped 1.2° — within the tolerance that makes its cap the
+/// supporting face, which is clipped as an inscribed 12-gon. The polygon's lowest corner sits
+/// 0.44 mm above the rim's true lowest point, which triangle floors (and a box floor, once the
+/// cylinder sinks in) used to report as the separation. Held above, touching and sunk, every floor
+/// must report the true gap.
+#[test]
+fn tipped_wide_cylinder_reports_the_true_gap_over_every_floor() {
+    let shape = Shape::Cylinder(Cylinder::new(2.2204573968041346, 0.1).unwrap());
+    let q = DQuat::from_xyzw(0.0, 0.010573986418967214, -0.13600893115891047, 0.9906511805152317);
+    let floors = [
+        (Shape::Plane(Plane::new(DVec3::Z, 0.0).unwrap()), Transform::IDENTITY),
+        (Shape::TriMesh(grid_floor(40, 0.25, 0.0)), Transform::IDENTITY),
+        (Shape::HeightField(flat_heightfield(41, 0.25, 0.0)), Transform::IDENTITY),
+        (
+            Shape::Cuboid(Cuboid::new(DVec3::new(5.0, 5.0, 0.5)).unwrap()),
+            Transform::new(DVec3::new(0.0, 0.0, -0.5), DQuat::IDENTITY),
+        ),
+    ];
+    let lowest = shape_aabb(&shape, &Transform::new(DVec3::ZERO, q)).min.z;
+    for (floor, floor_pose) in &floors {
+        for gap in [0.0005, 0.0, -0.001, -0.005] {
+            let pose = Transform::new(DVec3::new(0.0, 0.0, gap - lowest), q);
+            let m = collide(floor, floor_pose, &shape, &pose, MARGIN, &mut PairCache::default())
+                .unwrap_or_else(|| panic!("{}: no contact at gap {gap}", floor.kind_name()));
+            assert!(
+                (m.normal_world - DVec3::Z).length() < 1e-6,
+                "{}: normal {}",
+                floor.kind_name(),
+                m.normal_world
+            );
+            let deepest = m.min_separation();
+            assert!(
+                (deepest - gap).abs() < 1e-6,
+                "{}: deepest {deepest} for gap {gap} (error {:e})",
+                floor.kind_name(),
+                deepest - gap
+            );
+            for p in m.points() {
+                assert!(
+                    p.separation >= gap - 1e-7,
+                    "{}: separation {} < gap {gap}",
+                    floor.kind_name(),
+                    p.separation
+                );
+            }
+        }
+    }
 }
 
 proptest! {

@@ -98,6 +98,20 @@ pub fn supporting_feature(core: &Core, dir_local: DVec3) -> Feature {
     }
 }
 
+/// How far (m) a cap polygon's corners may sit above the core's true support point before that
+/// point joins the contact as well.
+pub(crate) const CAP_MISS: f64 = 1e-6;
+
+/// Whether `feature` (of `core`) is a polygon standing in for a round cap — a cylinder's or a
+/// cone's. Its corners are points of the shape, so their separations are never too deep, but they
+/// can be too shallow: the polygon's edges cut inside the circle, so a tipped cap's lowest corner
+/// sits above the rim's true lowest point, by up to `r·sin(tilt)·(1 − cos 15°)` (1.6 mm for a 2.2 m
+/// disc tipped 1.2°, still within [`FACE_COS_TOLERANCE`] of flat). Contacts built from such a
+/// feature check the core's own support point and add it when it is lower (see [`CAP_MISS`]).
+pub(crate) fn is_round_cap(core: &Core, feature: &Feature) -> bool {
+    feature.is_face() && matches!(core, Core::Cylinder { .. } | Core::Cone { .. })
+}
+
 /// A regular polygon inscribed in a cap circle, wound counter-clockwise seen from outside. Its
 /// corners are fixed in the shape's frame, so their ids stay put as the shape moves.
 fn cap(radius: f64, half_height: f64, top: bool) -> FeaturePoints {

@@ -10,13 +10,14 @@
 //!    and the shape's core; if the normal found passes the internal-edge rule (see
 //!    [`super::triangle`]) and is not the face normal, the contact is the convex–convex manifold
 //!    of the triangle and the shape (edge or vertex contact). Otherwise it is the face contact:
-//!    the shape's feature facing `−n_T` clipped to the triangle, separations from its plane.
+//!    the shape's feature facing `−n_T` clipped to the triangle, separations from its plane (with
+//!    a cylinder's or cone's true lowest point added when its cap polygon's corners sit higher).
 //! 3. **One manifold.** The normal is that of the deepest candidate; candidates within 30° of it
 //!    are kept with their separations measured along it, the others dropped. Duplicates (a box
 //!    corner over an edge shared by two triangles) are merged by feature id, and the rest reduced
 //!    to four points: the deepest (among near-ties, the one farthest from the patch centre, so a
-//!    box flat on the floor keeps its corners), then the farthest from it, the largest triangle,
-//!    the largest quadrilateral.
+//!    box flat on the floor keeps its corners — unless that is more than 1 µm shallower than the
+//!    deepest), then the farthest from it, the largest triangle, the largest quadrilateral.
 //!
 //! Feature ids: a point that is a vertex of the shape's feature (a box corner) is named by the
 //! shape's feature alone, so it keeps its id — and its warm-start impulse — as it slides from one
@@ -27,7 +28,9 @@ use super::aabb::{shape_aabb, Aabb};
 use super::clip::{clip_segment, clip_to_face, ClipVertex};
 use super::convex_contact::collide_convex;
 use super::epa::epa;
-use super::feature::{supporting_feature, EDGE, EDGE_SIN_TOLERANCE, FACE_COS_TOLERANCE, VERTEX};
+use super::feature::{
+    is_round_cap, supporting_feature, CAP_MISS, EDGE, EDGE_SIN_TOLERANCE, FACE_COS_TOLERANCE, VERTEX,
+};
 use super::gjk::{gjk, ConvexPair};
 use super::manifold::{ContactPoint, Manifold};
 use super::support::{Core, Rounded};
@@ -39,8 +42,14 @@ use crate::shape::Shape;
 const MERGE_COS: f64 = 0.866;
 /// Separations within this distance (m) of the deepest count as tied for the first point.
 const TIE_DISTANCE: f64 = 1e-5;
+/// The tied first point may be at most this much (m) shallower than the deepest candidate.
+const DEPTH_SLACK: f64 = 1e-6;
 /// Points closer than this (m) to the patch spanned so far add nothing to it.
 const DISTINCT: f64 = 1e-6;
+
+/// The clip tag of a round cap's true lowest point: below 0x8000 (an original point, named by the
+/// shape's feature alone) and above any cap corner's index.
+const LOWEST_TAG: u16 = 0x7FFF;
 
 /// A contact point before reduction, in the mesh's local frame.
 #[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
@@ -221,7 +230,23 @@ fn face_contact(
     let feature = supporting_feature(&shape.core, down_local);
     let incident: Vec<DVec3> = feature.points.iter().map(|&p| b_in_a.transform_point(p)).collect();
     let code = u32::from(feature.code);
-    for c in clip_to_face(v, n_t, &incident, margin + shape.radius) {
+    let mut clipped = clip_to_face(v, n_t, &incident, margin + shape.radius);
+    if is_round_cap(&shape.core, &feature) {
+        // The cap polygon's corners can sit above the rim's true lowest point (0.44 mm for a 2.2 m
+        // disc tipped 1.2°): when that point lies over this triangle and is lower than every
+        // clipped point, it is a candidate too. Its tag names the shape alone, so the triangles
+        // sharing an edge it lies on give one point, not two. (Not when a corner is as low, so a
+        // cylinder standing flat keeps its fixed corners.)
+        let lowest = b_in_a.transform_point(shape.core.support_local(down_local));
+        let deepest = clipped.iter().map(|c| c.separation).fold(f64::INFINITY, f64::min);
+        for mut c in clip_to_face(v, n_t, &[lowest], margin + shape.radius) {
+            if c.separation < deepest - CAP_MISS {
+                c.tag = LOWEST_TAG;
+                clipped.push(c);
+            }
+        }
+    }
+    for c in clipped {
         let id = feature_id(t, code, c.tag);
         out.push(Candidate {
             normal: n_t,
@@ -320,13 +345,18 @@ fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
         best.0
     };
     let argmax = |score: &dyn Fn(usize) -> f64| argmax_above(0.0, score);
-    let first = argmax(&|i| {
+    let tied = argmax(&|i| {
         if c[i].separation <= min_sep + TIE_DISTANCE {
             1.0 + flat(c[i].on_b - centre).length_squared()
         } else {
             0.0
         }
     });
+    // The tie must not hide depth from the solver: a point deeper than the tied choice by more
+    // than `DEPTH_SLACK` (a round cap's true lowest point, a few µm below the cap polygon's
+    // corners, which may be farther out) leads instead.
+    let deepest = (0..n).min_by(|&i, &j| c[i].separation.total_cmp(&c[j].separation)).unwrap_or(tied);
+    let first = if c[tied].separation > c[deepest].separation + DEPTH_SLACK { deepest } else { tied };
     let p = |i: usize| c[i].on_b;
     let second = argmax_above(DISTINCT * DISTINCT, &|i| flat(p(i) - p(first)).length_squared());
     if second == usize::MAX {
