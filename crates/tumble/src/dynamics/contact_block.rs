@@ -18,8 +18,17 @@
 //! `K` singular (a body has only three ways to move against a plane), so a tiny regularisation
 //! picks the least-norm split, which is the symmetric one.
 //!
-//! The accumulated impulses must stay non-negative: rows whose impulse would turn negative are
-//! released (set to zero) and the rest solved again, until none does.
+//! The accumulated impulses must stay non-negative, and a row left without impulse must not be
+//! left approaching: with `w = (K + Γ)Δλ − rhs` (the row's velocity error after the impulses),
+//! `λ + Δλ ≥ 0`, `w ≥ 0` and `(λ + Δλ)·w = 0` — a linear complementarity problem. Its matrix is
+//! positive definite, so it has one solution, found by Murty's least-index principal pivoting:
+//! solve with the rows of a guessed set free, then move the first row that breaks a condition
+//! (a free row that would pull, a released row that would approach) to the other set, and repeat.
+//! It ends within `2ⁿ` pivots. (Releasing every pulling row at once and never taking one back, as
+//! this did before, is not the solution when rows are coupled: a row pulled below zero only by a
+//! coupled row's large pull was dropped with it; the contact let a corner pass 4 cm into a wall in
+//! one substep, and in the relax pass took back more impulse than the target allowed, which added
+//! energy — docs/solver.md, "Fast spinning bodies".)
 
 /// At most four points per manifold.
 pub(crate) const MAX_POINTS: usize = 4;
@@ -34,27 +43,11 @@ pub(crate) struct NormalBlock {
 }
 
 impl NormalBlock {
-    /// The impulse increments that keep `accumulated + Δλ ≥ 0` (rows that would pull are
-    /// released), or `None` when the system cannot be factored (the caller then solves the rows
-    /// one by one).
+    /// The impulse increments that solve the complementarity problem of the module docs (rows
+    /// that would pull are released, released rows that would approach are taken back), or `None`
+    /// when the system cannot be factored (the caller then solves the rows one by one).
     pub fn solve(&self, accumulated: &[f64; MAX_POINTS]) -> Option<[f64; MAX_POINTS]> {
-        self.solve_with(None, accumulated)
-    }
-
-    /// `solve`, with the factor of the whole of `matrix` when the caller has it: if no row is
-    /// released, that one solve is the answer.
-    pub fn solve_with(
-        &self,
-        factor: Option<&Cholesky>,
-        accumulated: &[f64; MAX_POINTS],
-    ) -> Option<[f64; MAX_POINTS]> {
         let n = self.count;
-        if let Some(factor) = factor.filter(|_| n > 1) {
-            let x = factor.solve(&self.rhs);
-            if (0..n).all(|i| accumulated[i] + x[i] >= 0.0) {
-                return Some(x);
-            }
-        }
         if n == 1 {
             // One row: the scalar soft update, clamped.
             let k = self.matrix[0][0];
@@ -63,41 +56,25 @@ impl NormalBlock {
         }
         let mut active = [true; MAX_POINTS];
         let mut delta = [0.0; MAX_POINTS];
-        // Each pass releases at least one row, so `n + 1` passes always end.
-        for _ in 0..=n {
-            // Released rows end at zero impulse: their increment is fixed at `−accumulated`.
-            let mut m = [[0.0; MAX_POINTS]; MAX_POINTS];
-            let mut b = [0.0; MAX_POINTS];
-            let mut index = [0usize; MAX_POINTS];
-            let mut size = 0;
-            for i in (0..n).filter(|&i| active[i]) {
-                index[size] = i;
-                size += 1;
-            }
-            for (row, &i) in index[..size].iter().enumerate() {
-                b[row] = self.rhs[i];
-                for j in (0..n).filter(|&j| !active[j]) {
-                    b[row] += self.matrix[i][j] * accumulated[j];
+        // Murty's method needs at most 2ⁿ pivots in exact arithmetic.
+        for _ in 0..=(1usize << n) {
+            delta = self.solve_with(&active, accumulated)?;
+            let violated = (0..n).find(|&i| {
+                if active[i] {
+                    accumulated[i] + delta[i] < 0.0
+                } else {
+                    // A released row's velocity error; round-off may leave it a hair below zero.
+                    let (mut w, mut scale) = (-self.rhs[i], self.rhs[i].abs());
+                    for j in 0..n {
+                        w += self.matrix[i][j] * delta[j];
+                        scale += (self.matrix[i][j] * delta[j]).abs();
+                    }
+                    w < -1e-9 * scale
                 }
-                for (col, &j) in index[..size].iter().enumerate() {
-                    m[row][col] = self.matrix[i][j];
-                }
-            }
-            let x = solve_spd(&mut m, &mut b, size)?;
-            delta = [0.0; MAX_POINTS];
-            for i in (0..n).filter(|&i| !active[i]) {
-                delta[i] = -accumulated[i];
-            }
-            let mut released = false;
-            for (row, &i) in index[..size].iter().enumerate() {
-                delta[i] = x[row];
-                if accumulated[i] + x[row] < 0.0 {
-                    active[i] = false;
-                    released = true;
-                }
-            }
-            if !released {
-                return Some(delta);
+            });
+            match violated {
+                Some(i) => active[i] = !active[i],
+                None => return Some(delta),
             }
         }
         // Unreachable in exact arithmetic; fall back to clamping what the last pass found.
@@ -106,13 +83,47 @@ impl NormalBlock {
         }
         Some(delta)
     }
+
+    /// The increments with the rows in `active` free and the others released (their accumulated
+    /// impulse taken away: their increment is fixed at `−accumulated`).
+    fn solve_with(
+        &self,
+        active: &[bool; MAX_POINTS],
+        accumulated: &[f64; MAX_POINTS],
+    ) -> Option<[f64; MAX_POINTS]> {
+        let n = self.count;
+        let mut m = [[0.0; MAX_POINTS]; MAX_POINTS];
+        let mut b = [0.0; MAX_POINTS];
+        let mut index = [0usize; MAX_POINTS];
+        let mut size = 0;
+        for i in (0..n).filter(|&i| active[i]) {
+            index[size] = i;
+            size += 1;
+        }
+        for (row, &i) in index[..size].iter().enumerate() {
+            b[row] = self.rhs[i];
+            for j in (0..n).filter(|&j| !active[j]) {
+                b[row] += self.matrix[i][j] * accumulated[j];
+            }
+            for (col, &j) in index[..size].iter().enumerate() {
+                m[row][col] = self.matrix[i][j];
+            }
+        }
+        let x = solve_spd(&mut m, &mut b, size)?;
+        let mut delta = [0.0; MAX_POINTS];
+        for i in (0..n).filter(|&i| !active[i]) {
+            delta[i] = -accumulated[i];
+        }
+        for (row, &i) in index[..size].iter().enumerate() {
+            delta[i] = x[row];
+        }
+        Some(delta)
+    }
 }
 
 /// The Cholesky factor `L` (`m + εI = L Lᵀ`) of a symmetric positive (semi-)definite system of up
 /// to four rows, with a relative regularisation `ε` of `1e-9` of the largest diagonal entry so that
-/// the singular systems of coplanar points give their least-norm solution. A manifold's `K` is
-/// fixed for the step (it is built from the step-start anchors), so the factor is kept and reused
-/// by every pass whose rows have the same compliances (`ContactConstraint::solve_normals`).
+/// the singular systems of coplanar points give their least-norm solution.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Cholesky {
     l: [[f64; MAX_POINTS]; MAX_POINTS],
@@ -228,6 +239,21 @@ mod tests {
         for v in &x[..4] {
             assert!((v - 0.25).abs() < 1e-6, "{x:?}");
         }
+    }
+
+    /// A row pulled below zero only by a coupled row's pull is taken back once that row is
+    /// released: the answer is the complementarity solution, not both rows released.
+    #[test]
+    fn a_row_pulled_negative_by_its_neighbour_is_taken_back() {
+        // Points on either side of a long body's centre couple negatively. Alone, row 0 needs
+        // +0.5; solved together with row 1, which wants to pull hard, both come out negative.
+        let b = block(&[&[2.0, -1.9], &[-1.9, 2.0]], &[1.0, -20.0]);
+        let x = b.solve(&[0.0; 4]).unwrap();
+        assert_eq!(x[1], 0.0);
+        assert!((x[0] - 0.5).abs() < 1e-8, "{x:?}");
+        // Both conditions hold: row 1 is released and does not approach.
+        let w1 = b.matrix[1][0] * x[0] - b.rhs[1];
+        assert!(w1 >= 0.0, "{w1}");
     }
 
     /// A row that would pull is released and the others carry the load.

@@ -27,14 +27,14 @@ pub(crate) struct PatchFriction {
     /// `PointConstraint::anchors`).
     r_a_local: DVec3,
     r_b_local: DVec3,
-    /// Inverse of the 2×2 tangent effective mass at the centre, embedded in 3×3 over the plane.
-    tangent_mass: DMat3,
-    /// Isotropic tangent effective mass, `2 / trace(K_t)`: steers sliding friction (see `solve`).
-    sliding_mass: f64,
-    /// Effective mass of the twist row, `1 / n·(I_a⁻¹ + I_b⁻¹)·n`.
-    twist_mass: f64,
     /// Each point's distance from the centre in the tangent plane (the twist row's lever arms).
     twist_arms: [f64; MAX_POINTS],
+    /// Inverse of the 2×2 tangent effective mass at the centre, embedded in 3×3 over the plane,
+    /// and the isotropic tangent effective mass `2 / trace(K_t)` that steers sliding friction (see
+    /// `solve`), both from the step start. (Built from the levers of every pass instead, as the
+    /// normal rows are, a ragdoll lying on the ground no longer came to rest within 10 s (J6); the
+    /// friction bound `μΣλ_n` keeps what a mismatched mass can do in check.)
+    tangent_masses: (DMat3, f64),
     /// Accumulated friction impulse per substep, on body b, world frame.
     pub tangent_impulse: DVec3,
     /// Accumulated twist impulse about the normal, on body b.
@@ -45,10 +45,8 @@ impl PatchFriction {
     pub const EMPTY: PatchFriction = PatchFriction {
         r_a_local: DVec3::ZERO,
         r_b_local: DVec3::ZERO,
-        tangent_mass: DMat3::ZERO,
-        sliding_mass: 0.0,
-        twist_mass: 0.0,
         twist_arms: [0.0; MAX_POINTS],
+        tangent_masses: (DMat3::ZERO, 0.0),
         tangent_impulse: DVec3::ZERO,
         twist_impulse: 0.0,
     };
@@ -68,13 +66,6 @@ impl PatchFriction {
         let r_a = arms.iter().map(|r| r.0).sum::<DVec3>() / count;
         let r_b = arms.iter().map(|r| r.1).sum::<DVec3>() / count;
         let projector = DMat3::IDENTITY - outer(normal, normal);
-        let k = point_mass_matrix(a, r_a) + point_mass_matrix(b, r_b);
-        let kn = normal.dot(k * normal);
-        // The tangent block of K, inverted on the tangent plane (the normal direction gets a unit
-        // entry so the 3×3 is invertible, then is projected away).
-        let kt = projector * k * projector + outer(normal, normal);
-        let trace_t = k.x_axis.x + k.y_axis.y + k.z_axis.z - kn;
-        let k_twist = normal.dot((a.inv_inertia + b.inv_inertia) * normal);
         let mut twist_arms = [0.0; MAX_POINTS];
         for (arm, r) in twist_arms.iter_mut().zip(arms) {
             *arm = (projector * (r.1 - r_b)).length();
@@ -83,10 +74,8 @@ impl PatchFriction {
         PatchFriction {
             r_a_local,
             r_b_local,
-            tangent_mass: projector * invert_or_zero(kt) * projector,
-            sliding_mass: if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 },
-            twist_mass: if k_twist > 0.0 { 1.0 / k_twist } else { 0.0 },
             twist_arms,
+            tangent_masses: tangent_masses(a, b, (r_a, r_b), normal),
             tangent_impulse: projector * tangent_impulse,
             twist_impulse,
         }
@@ -130,13 +119,26 @@ impl PatchFriction {
         let twist_limit: f64 =
             friction * normal_impulses.iter().zip(&self.twist_arms).map(|(l, d)| l * d).sum::<f64>();
         if twist_limit > 0.0 {
+            // The effective mass with the inverse inertias as they are now: with the step-start
+            // ones, a body that turns far within the step (a stick at 300 rad/s turns 1.25 rad
+            // per substep) gets impulses too large for it, and an impulse more than twice the
+            // right one adds energy. The normal rows do the same (contact_solver.rs).
+            let k_twist = normal.dot((a.inv_inertia + b.inv_inertia) * normal);
+            let twist_mass = if k_twist > 0.0 { 1.0 / k_twist } else { 0.0 };
             let w_rel = normal.dot(b.w - a.w);
             let old = self.twist_impulse;
-            self.twist_impulse = (old - self.twist_mass * w_rel).clamp(-twist_limit, twist_limit);
+            self.twist_impulse = (old - twist_mass * w_rel).clamp(-twist_limit, twist_limit);
             let twist = (self.twist_impulse - old) * normal;
             a.w -= a.inv_inertia * twist;
             b.w += b.inv_inertia * twist;
-        } else {
+        } else if self.twist_impulse != 0.0 {
+            // No load, no twist friction: take back what the warm start applied. (Only zeroing
+            // the accumulator left the warm start's twist in the bodies: a stick whose long axis
+            // turned along the normal, where its inertia is 200 times smaller, was spun up by
+            // hundreds of rad/s by a contact carrying no load.)
+            let twist = self.twist_impulse * normal;
+            a.w += a.inv_inertia * twist;
+            b.w -= b.inv_inertia * twist;
             self.twist_impulse = 0.0;
         }
 
@@ -145,13 +147,14 @@ impl PatchFriction {
         // cut the friction of a sliding box by 6%); so a sliding patch is updated with the
         // isotropic mass, whose fixed point on the rim is anti-parallel to the slip velocity.
         let (r_a, r_b) = shared_levers(self.anchors(radii, normal, a, b), com_offset, a, b);
+        let (tangent_mass, sliding_mass) = self.tangent_masses;
         let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
         let vt = dv - normal.dot(dv) * normal;
         let old = self.tangent_impulse;
-        let mut new = old - self.tangent_mass * vt;
+        let mut new = old - tangent_mass * vt;
         let max = friction * total;
         if new.length() > max {
-            new = old - self.sliding_mass * vt;
+            new = old - sliding_mass * vt;
             let len = new.length();
             if len > max {
                 new *= max / len;
@@ -160,6 +163,20 @@ impl PatchFriction {
         self.tangent_impulse = new;
         apply_point_impulse(a, b, r_a, r_b, new - old);
     }
+}
+
+/// The tangent effective masses at the levers `(r_a, r_b)`: the inverse of the 2×2 tangent block
+/// of `K`, embedded in 3×3 over the plane, and the isotropic `2 / trace(K_t)` that steers sliding
+/// friction (see `solve`).
+fn tangent_masses(a: &SolverBody, b: &SolverBody, (r_a, r_b): (DVec3, DVec3), normal: DVec3) -> (DMat3, f64) {
+    let projector = DMat3::IDENTITY - outer(normal, normal);
+    let k = point_mass_matrix(a, r_a) + point_mass_matrix(b, r_b);
+    let kn = normal.dot(k * normal);
+    // The tangent block of K, inverted on the tangent plane (the normal direction gets a unit
+    // entry so the 3×3 is invertible, then is projected away).
+    let kt = projector * k * projector + outer(normal, normal);
+    let trace_t = k.x_axis.x + k.y_axis.y + k.z_axis.z - kn;
+    (projector * invert_or_zero(kt) * projector, if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 })
 }
 
 fn outer(u: DVec3, v: DVec3) -> DMat3 {

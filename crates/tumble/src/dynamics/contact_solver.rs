@@ -32,7 +32,7 @@
 //! at every substep's warm start.
 
 use crate::collision::ProxyKey;
-use crate::dynamics::contact_block::{Cholesky, NormalBlock, MAX_POINTS};
+use crate::dynamics::contact_block::{NormalBlock, MAX_POINTS};
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
 use crate::dynamics::softness::Softness;
@@ -212,6 +212,33 @@ pub(crate) fn shared_levers(
     (r_a + t * d, r_b - (1.0 - t) * d)
 }
 
+/// `K = J M⁻¹ Jᵀ` of normal rows along `n` acting at the shared `levers` (body a's and b's
+/// offsets): row `i` against row `j` through the two bodies, with the inverse inertias as they are
+/// now.
+pub(crate) fn normal_coupling(
+    levers: &[(DVec3, DVec3)],
+    n: DVec3,
+    a: &SolverBody,
+    b: &SolverBody,
+) -> [[f64; MAX_POINTS]; MAX_POINTS] {
+    let mut k = [[0.0; MAX_POINTS]; MAX_POINTS];
+    let mut arms = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+    for (arm, (r_a, r_b)) in arms.iter_mut().zip(levers) {
+        *arm = (r_a.cross(n), r_b.cross(n));
+    }
+    let count = levers.len().min(MAX_POINTS);
+    for i in 0..count {
+        let (ai, bi) = arms[i];
+        let (wa, wb) = (a.inv_inertia * ai, b.inv_inertia * bi);
+        for j in i..count {
+            let (aj, bj) = arms[j];
+            k[i][j] = a.inv_mass + b.inv_mass + aj.dot(wa) + bj.dot(wb);
+            k[j][i] = k[i][j];
+        }
+    }
+    k
+}
+
 /// A manifold prepared for the solver.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactConstraint {
@@ -229,32 +256,10 @@ pub(crate) struct ContactConstraint {
     material: ContactMaterial,
     points: [PointConstraint; 4],
     point_count: usize,
-    /// `K = J M⁻¹ Jᵀ` of the normal rows, from the step-start anchors: row `i` against row `j`
-    /// through the two bodies (contact_block.rs).
-    normal_coupling: [[f64; MAX_POINTS]; MAX_POINTS],
     /// Coulomb friction at the manifold's centre (contact_friction.rs).
     friction: PatchFriction,
-    /// Effective mass of the torsion row about the normal, `1 / n·(I_a⁻¹ + I_b⁻¹)·n`.
-    torsional_mass: f64,
-    /// Effective mass of the two rolling rows about the tangent axes: the tangent block of
-    /// `I_a⁻¹ + I_b⁻¹`, inverted on the tangent plane. (The tangent part of the full 3×3 inverse
-    /// is larger on a long body — up to the ratio of its moments — and over-relaxed the rows until
-    /// they fed energy into a capsule lying on the ground.)
-    rolling_mass: DMat3,
     rolling_impulse: DVec3,
     torsional_impulse: f64,
-    /// The factor of the normal block, per pass (relax, solve), kept for the step: `K` is fixed
-    /// for the step and the rows' compliances are fixed while they stay soft or speculative.
-    block_factors: [BlockFactor; 2],
-}
-
-/// A kept factor of a manifold's normal block and the rows it was made for.
-#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
-struct BlockFactor {
-    valid: bool,
-    /// Bit `i` set when row `i` is soft (has a compliance).
-    soft_rows: u8,
-    factor: Option<Cholesky>,
 }
 
 /// Applies the impulses `pᵢ` at levers `(r_aᵢ, r_bᵢ)` (`−pᵢ` to a, `+pᵢ` to b) at once: one
@@ -305,31 +310,21 @@ impl ContactConstraint {
             material,
             points: [PointConstraint::EMPTY; 4],
             point_count: points.len().min(4),
-            normal_coupling: [[0.0; MAX_POINTS]; MAX_POINTS],
             friction: PatchFriction::EMPTY,
-            torsional_mass: {
-                let k = normal.dot((a.inv_inertia + b.inv_inertia) * normal);
-                if k > 0.0 {
-                    1.0 / k
-                } else {
-                    0.0
-                }
-            },
-            rolling_mass: tangent_block_inverse(a.inv_inertia + b.inv_inertia, normal),
             rolling_impulse: DVec3::ZERO,
             torsional_impulse: 0.0,
-            block_factors: Default::default(),
         };
         for (pc, input) in constraint.points.iter_mut().zip(points) {
-            // The narrow phase's point is midway between the surfaces. A round body is pushed at
-            // its own surface point, on the line through its centre (a speculative point can lie
-            // far outside it, and pushing there would spin it); others at the midpoint.
-            let r_a = input.point_world
-                - if radii.0 > 0.0 { 0.5 * input.separation * normal } else { DVec3::ZERO }
-                - com_a;
-            let r_b = input.point_world
-                + if radii.1 > 0.0 { 0.5 * input.separation * normal } else { DVec3::ZERO }
-                - com_b;
+            // The narrow phase's point is midway between the surfaces; each body's anchor is its
+            // own surface point, half the separation either side. Not the midpoint: the anchor
+            // of a corner or face is a material point that turns with its body, and a midpoint
+            // `s/2` outside the body swings round on a longer arm. For a speculative point metres
+            // from the wall on a stick spinning at 300 rad/s that phantom point moved at 435 m/s,
+            // its separation swung by metres, and the rows pushed at it (docs/solver.md, "Fast
+            // spinning bodies"). At step start both give the same lever (`r × n` ignores a shift
+            // along `n`); a round body's anchor is on the line through its centre either way.
+            let r_a = input.point_world - 0.5 * input.separation * normal - com_a;
+            let r_b = input.point_world + 0.5 * input.separation * normal - com_b;
             let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
             *pc = PointConstraint {
                 softness,
@@ -359,15 +354,6 @@ impl ContactConstraint {
             (DVec3::ZERO, 0.0)
         };
         constraint.friction = PatchFriction::prepare(a, b, &offsets[..count], radii, normal, tangent, twist);
-        let arms = |pc: &PointConstraint| (pc.r_a0.cross(normal), pc.r_b0.cross(normal));
-        for i in 0..count {
-            let (ai, bi) = arms(&constraint.points[i]);
-            for j in 0..count {
-                let (aj, bj) = arms(&constraint.points[j]);
-                constraint.normal_coupling[i][j] =
-                    a.inv_mass + b.inv_mass + ai.dot(a.inv_inertia * aj) + bi.dot(b.inv_inertia * bj);
-            }
-        }
         constraint
     }
 
@@ -413,10 +399,13 @@ impl ContactConstraint {
         );
 
         // Torsional and rolling friction, bounded by the manifold's total normal impulse.
+        // Their effective masses from the inverse inertias as they are now, as for the normal
+        // and friction rows.
         if self.material.torsional_friction > 0.0 {
             let max = self.material.torsional_friction * total_normal;
             let w_rel = n.dot(b.w - a.w);
-            let k = self.torsional_mass;
+            let k_twist = n.dot((a.inv_inertia + b.inv_inertia) * n);
+            let k = if k_twist > 0.0 { 1.0 / k_twist } else { 0.0 };
             let old = self.torsional_impulse;
             self.torsional_impulse = (old - k * w_rel).clamp(-max, max);
             let p = (self.torsional_impulse - old) * n;
@@ -428,7 +417,12 @@ impl ContactConstraint {
             let w = b.w - a.w;
             let w_roll = w - n.dot(w) * n;
             let old = self.rolling_impulse;
-            let mut new = old - self.rolling_mass * w_roll;
+            // The tangent block of `I_a⁻¹ + I_b⁻¹`, inverted on the tangent plane. (The tangent
+            // part of the full 3×3 inverse is larger on a long body — up to the ratio of its
+            // moments — and over-relaxed the rows until they fed energy into a capsule lying on
+            // the ground.)
+            let rolling_mass = tangent_block_inverse(a.inv_inertia + b.inv_inertia, n);
+            let mut new = old - rolling_mass * w_roll;
             new -= n.dot(new) * n;
             let len = new.length();
             if len > max {
@@ -460,12 +454,21 @@ impl ContactConstraint {
         let mut block = NormalBlock { count, ..Default::default() };
         let mut accumulated = [0.0; MAX_POINTS];
         let mut anchors = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
-        let mut soft_rows = 0u8;
+        let mut separations = [0.0; MAX_POINTS];
+        for (i, pc) in self.points[..count].iter().enumerate() {
+            let material = pc.anchors(radii, n, a, b);
+            separations[i] = pc.separation(material, a, b, n);
+            anchors[i] = shared_levers(material, self.com_offset, a, b);
+        }
+        // `K` of the levers the impulses act at now. The step-start `K` no longer matches them once
+        // a body has turned within the step, and a row whose `K` is too small by a factor `f`
+        // overshoots its target by `f`: beyond `f = 2` every such impulse adds energy. A stick
+        // spinning at 300 rad/s turns 1.25 rad per substep, its corner's `K` changes by up to
+        // 4×, and the phantom levers of far speculative points (see `prepare`) by 60×.
+        let coupling = normal_coupling(&anchors[..count], n, a, b);
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
-            let material = pc.anchors(radii, self.normal, a, b);
-            let s = pc.separation(material, a, b, n);
-            let (r_a, r_b) = shared_levers(material, self.com_offset, a, b);
-            anchors[i] = (r_a, r_b);
+            let s = separations[i];
+            let (r_a, r_b) = anchors[i];
             let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
                 // Speculative: allow closing the gap, no more.
                 (s * ctx.inv_h, 1.0, 0.0)
@@ -491,21 +494,14 @@ impl ContactConstraint {
             // it settles compressed by L/k. Leaking only the part above the steady load lets the
             // spring carry L at zero compression while shocks still meet the soft spring (a slow
             // integral term on top of the spring–damper).
-            let k_ii = self.normal_coupling[i][i];
+            let k_ii = coupling[i][i];
             let gamma = if mass_scale > 0.0 { k_ii * impulse_scale / mass_scale } else { 0.0 };
-            if gamma > 0.0 {
-                soft_rows |= 1 << i;
-            }
             block.rhs[i] = -(vn + bias) - gamma * (pc.normal_impulse - steady);
-            block.matrix[i] = self.normal_coupling[i];
+            block.matrix[i] = coupling[i];
             block.matrix[i][i] += gamma;
             accumulated[i] = pc.normal_impulse;
         }
-        let kept = &mut self.block_factors[usize::from(use_bias)];
-        if count > 1 && (!kept.valid || kept.soft_rows != soft_rows) {
-            *kept = BlockFactor { valid: true, soft_rows, factor: Cholesky::factor(&block.matrix, count) };
-        }
-        let deltas = block.solve_with(kept.factor.as_ref(), &accumulated).unwrap_or_else(|| {
+        let deltas = block.solve(&accumulated).unwrap_or_else(|| {
             // One by one, each row against its own effective mass.
             let mut deltas = [0.0; MAX_POINTS];
             for i in 0..count {
@@ -579,16 +575,12 @@ impl ContactConstraint {
         if block.count == 0 || !closed {
             return;
         }
-        // `K` of the levers the impulses act at now, not the step-start `normal_coupling`: with
-        // the latter a spinning box's corner missed its target speed by 3% (docs/solver.md).
+        // `K` of the levers the impulses act at now, not of the step-start anchors: with the latter
+        // a spinning box's corner missed its target speed by 3% (docs/solver.md).
         let count = block.count;
-        for (row, &(ra_i, rb_i)) in levers[..count].iter().enumerate() {
-            for (col, &(ra_j, rb_j)) in levers[..count].iter().enumerate() {
-                block.matrix[row][col] = a.inv_mass
-                    + b.inv_mass
-                    + ra_i.cross(n).dot(a.inv_inertia * ra_j.cross(n))
-                    + rb_i.cross(n).dot(b.inv_inertia * rb_j.cross(n));
-            }
+        let coupling = normal_coupling(&levers[..count], n, a, b);
+        for row in 0..count {
+            block.matrix[row] = coupling[row];
         }
         let Some(deltas) = block.solve(&accumulated) else { return };
         for row in 0..block.count {
