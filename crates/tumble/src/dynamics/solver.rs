@@ -59,11 +59,12 @@ pub struct SolverSettings {
     /// bodies, and a learned load that lags a swinging pendulum pulls it apart. Default 0.1 s.
     #[serde(default)]
     pub steady_load_time: f64,
-    /// Solve the rows holding tree-shaped groups of joints together (chains, ragdolls, arms)
+    /// Solve the rows holding tree-shaped groups of joints together (chains, robot arms)
     /// exactly in each pass, all at once (`dynamics/joint_tree/`), rather than row by row. Exact
     /// rows do not stretch under load, whatever the mass ratios; `joint_hertz` then sets only how
     /// fast drift is corrected. Loops, distance joints, limits, motors and springs are solved row
-    /// by row either way. Default true.
+    /// by row either way, and so are joints that have any of those (`docs/joint-tree.md`).
+    /// Default true.
     #[serde(default = "default_true")]
     pub joint_trees: bool,
 }

@@ -344,8 +344,25 @@ impl Joint {
         }
     }
 
-    /// How many equality rows the joint tree solves for this joint (0: none).
+    /// How many equality rows the joint tree solves for this joint (0: none — distance joints,
+    /// and joints with limits, a motor, a spring or friction). Those optional rows act on the
+    /// figure through effective masses the row-by-row solve gets only approximately; against a
+    /// tree's exact rows they fight it: a motor driving a hinge into its limit rocked ±0.04 rad
+    /// at the limit instead of resting there. Such joints stay row by row.
     pub(crate) fn equality_row_count(&self) -> usize {
+        let optional = match &self.kind {
+            JointKind::Ball(j) => {
+                j.swing_limit.is_some() || j.twist_limits.is_some() || j.friction_torque > 0.0
+            }
+            JointKind::Hinge(j) => {
+                j.limits.is_some() || j.motor.is_some() || j.spring.is_some() || j.friction_torque > 0.0
+            }
+            JointKind::Slider(j) => j.limits.is_some() || j.motor.is_some() || j.spring.is_some(),
+            JointKind::Fixed(_) | JointKind::Distance(_) => false,
+        };
+        if optional {
+            return 0;
+        }
         match &self.kind {
             JointKind::Ball(_) => 3,
             JointKind::Hinge(_) | JointKind::Slider(_) => 5,

@@ -23,8 +23,8 @@
 //! Bodies that do not move in the solve (static, kinematic, asleep) are one "ground": a joint to
 //! the ground has a single body neighbour. A joint leaf would have an empty block, so a figure
 //! hung from the ground is rooted at that joint; a second joint to the ground, or any joint that
-//! closes a loop, stays with the row-by-row solve, as do distance joints and all limits, motors
-//! and springs. The rows solved here are rigid at the velocity level and drift back to `C = 0` at
+//! closes a loop, stays with the row-by-row solve, as do distance joints and joints with limits,
+//! motors, springs or friction (`Joint::equality_row_count`). The rows solved here are rigid at the velocity level and drift back to `C = 0` at
 //! the rate `β` of the joint softness; warm starting, force reporting and breaking use the same
 //! accumulated impulses as the row-by-row parts.
 
