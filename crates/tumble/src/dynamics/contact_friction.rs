@@ -16,8 +16,8 @@
 //! A single point (a ball, a tipped box's corner) is the same as per-point friction.
 
 use crate::dynamics::contact_block::MAX_POINTS;
-use crate::dynamics::contact_solver::{round_anchors, round_locals, shared_levers};
-use crate::dynamics::joint::parts::{apply_point_impulse, invert_or_zero, point_mass_matrix};
+use crate::dynamics::contact_solver::{round_anchors, round_locals, shared_levers, tangent_block_inverse};
+use crate::dynamics::joint::parts::{apply_point_impulse, point_mass_matrix};
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::{DMat3, DVec3};
 
@@ -169,14 +169,10 @@ impl PatchFriction {
 /// of `K`, embedded in 3×3 over the plane, and the isotropic `2 / trace(K_t)` that steers sliding
 /// friction (see `solve`).
 fn tangent_masses(a: &SolverBody, b: &SolverBody, (r_a, r_b): (DVec3, DVec3), normal: DVec3) -> (DMat3, f64) {
-    let projector = DMat3::IDENTITY - outer(normal, normal);
     let k = point_mass_matrix(a, r_a) + point_mass_matrix(b, r_b);
     let kn = normal.dot(k * normal);
-    // The tangent block of K, inverted on the tangent plane (the normal direction gets a unit
-    // entry so the 3×3 is invertible, then is projected away).
-    let kt = projector * k * projector + outer(normal, normal);
     let trace_t = k.x_axis.x + k.y_axis.y + k.z_axis.z - kn;
-    (projector * invert_or_zero(kt) * projector, if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 })
+    (tangent_block_inverse(k, normal), if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 })
 }
 
 fn outer(u: DVec3, v: DVec3) -> DMat3 {

@@ -178,7 +178,7 @@ pub(crate) fn round_anchors(
 }
 
 /// The inverse of `k`'s block on the plane perpendicular to `normal`, as a 3×3 that maps the
-/// plane to itself (and the normal to 0).
+/// plane to itself (and the normal to 0): the tangent effective mass of friction and rolling rows.
 pub(crate) fn tangent_block_inverse(k: DMat3, normal: DVec3) -> DMat3 {
     let outer = DMat3::from_cols(normal * normal.x, normal * normal.y, normal * normal.z);
     let projector = DMat3::IDENTITY - outer;

@@ -87,13 +87,16 @@ impl SolverBody {
         }
     }
 
+    /// Whether `mass_matrix` exists (without computing it).
+    pub fn has_mass_matrix(&self) -> bool {
+        let finite_positive = |x: f64| x.is_finite() && x > 0.0;
+        finite_positive(self.inv_mass) && self.inertia_principal.to_array().into_iter().all(finite_positive)
+    }
+
     /// The mass and world inertia tensor, or `None` unless both are finite and positive (a body
     /// that does not move, or one with an infinite moment).
     pub fn mass_matrix(&self) -> Option<(f64, DMat3)> {
-        let finite_positive = |x: f64| x.is_finite() && x > 0.0;
-        if !finite_positive(self.inv_mass)
-            || !self.inertia_principal.to_array().into_iter().all(finite_positive)
-        {
+        if !self.has_mass_matrix() {
             return None;
         }
         let r = DMat3::from_quat(self.q * self.principal_rotation_local);

@@ -103,7 +103,7 @@ pub(crate) struct JointTrees {
 
 /// Whether a solver body is one of the figure's moving bodies (finite, positive mass).
 fn moves(body: &SolverBody) -> bool {
-    body.inv_mass > 0.0 && body.mass_matrix().is_some()
+    body.has_mass_matrix()
 }
 
 fn find(parents: &mut [u32], mut i: u32) -> u32 {
