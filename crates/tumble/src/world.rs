@@ -79,6 +79,9 @@ pub struct World {
     /// The step's joint trees (`dynamics/joint_tree/`), kept to reuse their allocations.
     #[serde(skip)]
     pub(crate) joint_trees: crate::dynamics::joint_tree::JointTrees,
+    /// The colouring of the contact rows (`dynamics/colouring.rs`), kept to reuse its allocations.
+    #[serde(skip)]
+    pub(crate) contact_colouring: crate::dynamics::colouring::ContactColouring,
     pub(crate) gravity: DVec3,
     pub(crate) time: f64,
     /// The low-order bits lost from `time` by the last addition (Kahan summation).
@@ -167,6 +170,7 @@ impl World {
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
             joint_trees: Default::default(),
+            contact_colouring: Default::default(),
             gravity: check_vec("gravity", def.gravity)?,
             time: 0.0,
             time_compensation: 0.0,

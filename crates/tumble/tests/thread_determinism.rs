@@ -1,5 +1,6 @@
-//! Threads change nothing: the shared `pyramid` and `ragdolls` scenes stepped 300 times give the
-//! same `state_hash` on 1, 2 and 4 threads, and again on a second run.
+//! Threads change nothing: the shared `pyramid`, `ragdolls` and `rain` scenes stepped 300 times
+//! give the same `state_hash` on 1, 2 and 4 threads, and again on a second run. (The pyramid's and
+//! the rain's large colours are split between the threads, dynamics/colouring.rs.)
 
 use tumble::scenes;
 
@@ -14,9 +15,13 @@ fn hash_after(name: &str, size: usize, threads: usize, steps: u32) -> u64 {
 }
 
 fn check(name: &str, size: usize) {
-    let reference = hash_after(name, size, 1, 300);
+    check_steps(name, size, 300);
+}
+
+fn check_steps(name: &str, size: usize, steps: u32) {
+    let reference = hash_after(name, size, 1, steps);
     for threads in [1, 2, 4] {
-        assert_eq!(hash_after(name, size, threads, 300), reference, "{name} on {threads} threads");
+        assert_eq!(hash_after(name, size, threads, steps), reference, "{name} on {threads} threads");
     }
 }
 
@@ -28,4 +33,9 @@ fn pyramid_state_hash_is_the_same_on_any_thread_count() {
 #[test]
 fn ragdolls_state_hash_is_the_same_on_any_thread_count() {
     check("ragdolls", 20);
+}
+
+#[test]
+fn rain_state_hash_is_the_same_on_any_thread_count() {
+    check_steps("rain", 400, 200);
 }

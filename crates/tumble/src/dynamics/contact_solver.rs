@@ -531,6 +531,11 @@ impl ContactConstraint {
         }
     }
 
+    /// Whether the contact can bounce at all.
+    pub fn has_restitution(&self) -> bool {
+        self.material.restitution != 0.0
+    }
+
     /// Stage "restitution", after every substep's relax pass: points that approached faster than
     /// the threshold separate at `e` times their approach speed, as soon as the approach is
     /// stopped (`last`: at the end of the step in any case). See docs/solver.md, "Restitution".

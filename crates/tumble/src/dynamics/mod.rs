@@ -3,6 +3,7 @@
 //!
 //! See `docs/solver.md` for the derivation of the soft constraints and the stage order.
 
+pub(crate) mod colouring;
 pub mod contact;
 pub(crate) mod contact_block;
 pub(crate) mod contact_friction;
@@ -15,6 +16,7 @@ pub mod material;
 pub(crate) mod softness;
 pub mod solver;
 pub(crate) mod solver_body;
+pub(crate) mod solver_threads;
 
 pub use contact_solver::{ContactImpulse, ContactMaterial};
 pub use island::SleepSettings;

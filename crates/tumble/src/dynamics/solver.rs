@@ -18,8 +18,11 @@
 
 use crate::body::{Body, BodyKind};
 use crate::dynamics::contact_solver::{ContactConstraint, ContactPointInput};
+use crate::dynamics::joint::Joint;
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
+use crate::dynamics::solver_threads::{run_on_threads, SolveData};
+use crate::id::SlotPool;
 use crate::math::DVec3;
 use crate::shape::Shape;
 use crate::world::World;
@@ -165,7 +168,8 @@ pub(crate) fn pair_mut<T>(items: &mut [T], i: usize, j: usize) -> (&mut T, &mut 
 }
 
 impl World {
-    /// Runs the solver stages for one step of `dt` (see the module docs for the order).
+    /// Runs the solver stages for one step of `dt` (see the module docs for the order), on the
+    /// world's threads if it has them.
     pub(crate) fn solve(&mut self, dt: f64) {
         let ctx = StepContext::new(dt, self.gravity, &self.solver_settings);
 
@@ -255,44 +259,51 @@ impl World {
             ));
         }
 
-        for substep in 0..ctx.substeps {
-            for body in bodies.iter_mut() {
-                body.integrate_velocity(ctx.gravity, ctx.h);
-            }
-            self.for_each_joint(&mut bodies, |joint, a, b| joint.warm_start(a, b));
-            for c in contacts.iter_mut() {
-                let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
-                c.warm_start(a, b);
-            }
-            for _ in 0..ctx.solve_iterations {
-                self.for_each_joint(&mut bodies, |joint, a, b| joint.solve(a, b, &ctx, true));
-                for c in contacts.iter_mut() {
-                    let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
-                    c.solve(a, b, &ctx, true);
+        // Colour the contacts so that each colour's rows share no moving body: a colour is solved
+        // on all threads at once, with the same result for any thread count (colouring.rs).
+        let mut colouring = std::mem::take(&mut self.contact_colouring);
+        colouring.sort(&mut contacts, &bodies);
+        let restitution = contacts.iter().any(|c| c.has_restitution());
+        let has_joints = self.joints.iter().any(|(_, joint)| joint.solving);
+
+        // The substeps, on every thread of the pool at once (solver_threads.rs).
+        let mut serial = (&mut self.joints, &mut trees);
+        let data = SolveData::new(&mut bodies, &mut contacts, &colouring, &mut serial);
+        let ctx = &ctx;
+        run_on_threads(self.pool.as_deref(), |thread| {
+            let joint_stage = |f: &dyn Fn(&mut Joint, &mut SolverBody, &mut SolverBody)| {
+                if has_joints {
+                    data.serial(thread, |(joints, _), bodies| for_each_joint(joints, bodies, f));
                 }
-                trees.solve(&mut self.joints, &mut bodies, ctx.joint_softness.bias_rate);
-            }
-            for body in bodies.iter_mut() {
-                body.integrate_position(ctx.h);
-            }
-            for _ in 0..ctx.relax_iterations {
-                self.for_each_joint(&mut bodies, |joint, a, b| joint.solve(a, b, &ctx, false));
-                for c in contacts.iter_mut() {
-                    let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
-                    c.solve(a, b, &ctx, false);
+            };
+            for substep in 0..ctx.substeps {
+                data.bodies(thread, |body| body.integrate_velocity(ctx.gravity, ctx.h));
+                joint_stage(&|joint, a, b| joint.warm_start(a, b));
+                data.contacts_with_bodies(thread, |c, a, b| c.warm_start(a, b));
+                for _ in 0..ctx.solve_iterations {
+                    joint_stage(&|joint, a, b| joint.solve(a, b, ctx, true));
+                    data.contacts_with_bodies(thread, |c, a, b| c.solve(a, b, ctx, true));
+                    if has_joints {
+                        data.serial(thread, |(joints, trees), bodies| {
+                            trees.solve(joints, bodies, ctx.joint_softness.bias_rate)
+                        });
+                    }
+                }
+                data.bodies(thread, |body| body.integrate_position(ctx.h));
+                for _ in 0..ctx.relax_iterations {
+                    joint_stage(&|joint, a, b| joint.solve(a, b, ctx, false));
+                    data.contacts_with_bodies(thread, |c, a, b| c.solve(a, b, ctx, false));
+                }
+                if ctx.steady_load_rate > 0.0 {
+                    data.contacts(thread, |c| c.update_steady_load(ctx.steady_load_rate));
+                }
+                if restitution {
+                    let last = substep + 1 == ctx.substeps;
+                    data.contacts_with_bodies(thread, |c, a, b| c.apply_restitution(a, b, ctx, last));
                 }
             }
-            if ctx.steady_load_rate > 0.0 {
-                for c in contacts.iter_mut() {
-                    c.update_steady_load(ctx.steady_load_rate);
-                }
-            }
-            let last = substep + 1 == ctx.substeps;
-            for c in contacts.iter_mut() {
-                let (a, b) = pair_mut(&mut bodies, c.body_a, c.body_b);
-                c.apply_restitution(a, b, &ctx, last);
-            }
-        }
+        });
+        self.contact_colouring = colouring;
 
         // Keep the impulses for the next step's warm start.
         for c in &contacts {
@@ -318,19 +329,19 @@ impl World {
         }
         self.solver_bodies = bodies;
     }
+}
 
-    /// Calls `f` for every active joint with its two solver bodies, in joint-slot order.
-    fn for_each_joint(
-        &mut self,
-        bodies: &mut [SolverBody],
-        mut f: impl FnMut(&mut crate::dynamics::joint::Joint, &mut SolverBody, &mut SolverBody),
-    ) {
-        for (_, joint) in self.joints.iter_mut() {
-            if !joint.solving {
-                continue;
-            }
-            let (a, b) = pair_mut(bodies, joint.body_a.index(), joint.body_b.index());
-            f(joint, a, b);
+/// Calls `f` for every active joint with its two solver bodies, in joint-slot order.
+fn for_each_joint(
+    joints: &mut SlotPool<Joint>,
+    bodies: &mut [SolverBody],
+    f: &dyn Fn(&mut Joint, &mut SolverBody, &mut SolverBody),
+) {
+    for (_, joint) in joints.iter_mut() {
+        if !joint.solving {
+            continue;
         }
+        let (a, b) = pair_mut(bodies, joint.body_a.index(), joint.body_b.index());
+        f(joint, a, b);
     }
 }

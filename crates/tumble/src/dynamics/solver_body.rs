@@ -87,6 +87,12 @@ impl SolverBody {
         }
     }
 
+    /// Whether the body moves under impulses (a dynamic body, awake); the others only take part
+    /// as fixed (or kinematically moving) ends of constraints.
+    pub fn is_dynamic(&self) -> bool {
+        self.kind == BodyKind::Dynamic
+    }
+
     /// Whether `mass_matrix` exists (without computing it).
     pub fn has_mass_matrix(&self) -> bool {
         let finite_positive = |x: f64| x.is_finite() && x > 0.0;

@@ -1,0 +1,292 @@
+//! The solver's threads: every thread of the world's pool runs the whole substep loop, each doing
+//! its share of every stage, and they meet at a spinning barrier between stages (as Box2D v3's
+//! solver does).
+//!
+//! A step has hundreds of stages (each colour of each pass of each substep, colouring.rs); handing
+//! each to a thread pool would cost a wake-up per stage, more than a small stage's work. Here the
+//! threads stay awake for the step and a stage boundary costs a barrier — a few hundred
+//! nanoseconds.
+//!
+//! Shares never change a number: a body stage treats every body on its own, and a colour's
+//! constraints share no moving body, so which thread does what is invisible in the result. Stages
+//! that are not split (joints, joint trees, small colours, the overflow colour) run on the first
+//! thread while the others wait.
+
+#![allow(unsafe_code)] // `Shared`: threads write distinct elements between barriers.
+
+use std::ops::Range;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use crate::dynamics::colouring::ContactColouring;
+use crate::dynamics::contact_solver::ContactConstraint;
+use crate::dynamics::solver_body::SolverBody;
+
+/// Spins before a waiting thread starts yielding its core (on a machine with fewer cores than
+/// threads, the thread it waits for may need that core).
+const SPINS_BEFORE_YIELD: u32 = 200;
+
+/// The panic of a thread released from a barrier because another thread panicked.
+const RELEASED: &str = "another solver thread panicked";
+
+/// A barrier for a fixed number of threads that spins instead of sleeping.
+pub(crate) struct SpinBarrier {
+    threads: usize,
+    arrived: AtomicUsize,
+    generation: AtomicUsize,
+    /// Set when a thread panics, so the others stop waiting for it.
+    poisoned: AtomicBool,
+}
+
+impl SpinBarrier {
+    pub fn new(threads: usize) -> Self {
+        SpinBarrier {
+            threads,
+            arrived: AtomicUsize::new(0),
+            generation: AtomicUsize::new(0),
+            poisoned: AtomicBool::new(false),
+        }
+    }
+
+    /// Waits until every thread has arrived. Everything a thread wrote before it arrived is
+    /// visible to every thread after the barrier. Panics if another thread panicked.
+    pub fn wait(&self) {
+        let generation = self.generation.load(Ordering::Acquire);
+        if self.arrived.fetch_add(1, Ordering::AcqRel) + 1 == self.threads {
+            self.arrived.store(0, Ordering::Relaxed);
+            self.generation.fetch_add(1, Ordering::Release);
+            return;
+        }
+        let mut spins = 0;
+        while self.generation.load(Ordering::Acquire) == generation {
+            if self.poisoned.load(Ordering::Relaxed) {
+                std::panic::panic_any(RELEASED);
+            }
+            if spins < SPINS_BEFORE_YIELD {
+                spins += 1;
+                std::hint::spin_loop();
+            } else {
+                std::thread::yield_now();
+            }
+        }
+    }
+
+    pub fn poison(&self) {
+        self.poisoned.store(true, Ordering::Relaxed);
+    }
+}
+
+/// One thread's place among the solver's threads.
+#[derive(Clone, Copy)]
+pub(crate) struct SolverThread<'a> {
+    pub index: usize,
+    pub count: usize,
+    /// `None` when there is one thread.
+    barrier: Option<&'a SpinBarrier>,
+}
+
+impl<'a> SolverThread<'a> {
+    /// The only thread.
+    pub const ALONE: SolverThread<'static> = SolverThread { index: 0, count: 1, barrier: None };
+
+    pub fn new(index: usize, barrier: &'a SpinBarrier) -> Self {
+        SolverThread { index, count: barrier.threads, barrier: Some(barrier) }
+    }
+
+    /// The thread that runs the stages that are not split.
+    pub fn is_first(&self) -> bool {
+        self.index == 0
+    }
+
+    /// Waits for the other threads at the end of a stage.
+    pub fn sync(&self) {
+        if let Some(barrier) = self.barrier {
+            barrier.wait();
+        }
+    }
+
+    /// This thread's contiguous share of `range`.
+    pub fn share(&self, range: Range<usize>) -> Range<usize> {
+        let len = range.len();
+        let (count, index) = (self.count, self.index);
+        range.start + len * index / count..range.start + len * (index + 1) / count
+    }
+}
+
+/// What the substeps work on, shared by the solver's threads. Every stage method ends at a
+/// barrier, and between barriers each thread writes only its share (of the bodies, of the
+/// contacts, or of a colour's contacts, which share no dynamic body) or — the first thread alone —
+/// everything; that is what makes the accesses below sound.
+pub(crate) struct SolveData<'a, S> {
+    bodies: Shared<'a, SolverBody>,
+    contacts: Shared<'a, ContactConstraint>,
+    colouring: &'a ContactColouring,
+    /// The state the stages that are not split work on (joints, joint trees).
+    serial: Shared<'a, S>,
+}
+
+impl<'a, S: Send> SolveData<'a, S> {
+    /// `contacts` must be in the order `colouring` sorted them into.
+    pub fn new(
+        bodies: &'a mut [SolverBody],
+        contacts: &'a mut [ContactConstraint],
+        colouring: &'a ContactColouring,
+        serial: &'a mut S,
+    ) -> Self {
+        SolveData {
+            bodies: Shared::new(bodies),
+            contacts: Shared::new(contacts),
+            colouring,
+            serial: Shared::new(std::slice::from_mut(serial)),
+        }
+    }
+
+    /// `f` on every body, each thread its share.
+    pub fn bodies(&self, thread: SolverThread, f: impl Fn(&mut SolverBody)) {
+        // SAFETY: this thread's share, until the barrier.
+        unsafe { self.bodies.slice(thread.share(0..self.bodies.len)) }.iter_mut().for_each(f);
+        thread.sync();
+    }
+
+    /// `f` on every contact on its own (no bodies), each thread its share.
+    pub fn contacts(&self, thread: SolverThread, f: impl Fn(&mut ContactConstraint)) {
+        // SAFETY: this thread's share, until the barrier.
+        unsafe { self.contacts.slice(thread.share(0..self.contacts.len)) }.iter_mut().for_each(f);
+        thread.sync();
+    }
+
+    /// `f` on every contact with its two bodies, colour by colour (colouring.rs): a large colour
+    /// split between the threads, small ones and the overflow on the first thread.
+    pub fn contacts_with_bodies(
+        &self,
+        thread: SolverThread,
+        f: impl Fn(&mut ContactConstraint, &mut SolverBody, &mut SolverBody),
+    ) {
+        for (run, split) in self.colouring.stages() {
+            let mine = match (split, thread.is_first()) {
+                (true, _) => thread.share(run.clone()),
+                (false, true) => run.clone(),
+                (false, false) => 0..0,
+            };
+            // SAFETY: this thread's share of one colour (or a serial run on the first thread
+            // alone), until the barrier; a colour's contacts share no dynamic body, and
+            // `with_pair` copies the others.
+            for c in unsafe { self.contacts.slice(mine) } {
+                unsafe { self.bodies.with_pair(c.body_a, c.body_b, |a, b| f(c, a, b)) };
+            }
+            thread.sync();
+        }
+    }
+
+    /// `f` on the first thread with the serial state and all bodies; the others wait.
+    pub fn serial(&self, thread: SolverThread, f: impl FnOnce(&mut S, &mut [SolverBody])) {
+        if thread.is_first() {
+            // SAFETY: the first thread alone, until the barrier.
+            unsafe { f(&mut self.serial.all()[0], self.bodies.all()) };
+        }
+        thread.sync();
+    }
+}
+
+/// A slice the solver's threads share, each writing only elements no other thread touches until
+/// the next barrier.
+struct Shared<'a, T> {
+    ptr: *mut T,
+    len: usize,
+    _slice: std::marker::PhantomData<&'a mut [T]>,
+}
+
+// SAFETY: access goes through the unsafe methods, whose contracts keep threads to distinct
+// elements between barriers (and the barrier orders the writes).
+unsafe impl<T: Send> Send for Shared<'_, T> {}
+unsafe impl<T: Send> Sync for Shared<'_, T> {}
+
+impl<'a, T> Shared<'a, T> {
+    fn new(slice: &'a mut [T]) -> Self {
+        Shared { ptr: slice.as_mut_ptr(), len: slice.len(), _slice: std::marker::PhantomData }
+    }
+
+    /// The elements in `range`.
+    ///
+    /// # Safety
+    /// No other thread may use them until the next barrier, and this thread holds no other
+    /// reference to them.
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn slice(&self, range: Range<usize>) -> &mut [T] {
+        assert!(range.start <= range.end && range.end <= self.len, "share out of bounds");
+        // SAFETY: in bounds (checked); exclusive by the caller's contract.
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
+    }
+
+    /// The whole slice.
+    ///
+    /// # Safety
+    /// As for `slice`: no other thread uses any element until the next barrier.
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn all(&self) -> &mut [T] {
+        // SAFETY: the caller's contract.
+        unsafe { self.slice(0..self.len) }
+    }
+}
+
+impl Shared<'_, SolverBody> {
+    /// Calls `f` with bodies `i` and `j`: a dynamic body in place, any other (static, kinematic,
+    /// asleep: its impulses are all zero) as a private copy whose changes are dropped — many
+    /// constraints of one colour may read it at once, and none may write it. The serial path
+    /// works the same way, so both give the same numbers (and a non-finite impulse cannot reach
+    /// the ground).
+    ///
+    /// # Safety
+    /// No other thread may use a dynamic body `i` or `j` until the next barrier.
+    unsafe fn with_pair<R>(
+        &self,
+        i: usize,
+        j: usize,
+        f: impl FnOnce(&mut SolverBody, &mut SolverBody) -> R,
+    ) -> R {
+        assert!(i < self.len && j < self.len && i != j, "a constraint needs two different bodies");
+        // SAFETY: in bounds (checked above); `i != j`, so the references do not alias; a dynamic
+        // body is this thread's alone (the caller's contract); a body that does not move is only
+        // read, and no thread writes it.
+        unsafe {
+            let (pi, pj) = (self.ptr.add(i), self.ptr.add(j));
+            let (mut copy_i, mut copy_j);
+            let a = if (*pi).is_dynamic() {
+                &mut *pi
+            } else {
+                copy_i = *pi;
+                &mut copy_i
+            };
+            let b = if (*pj).is_dynamic() {
+                &mut *pj
+            } else {
+                copy_j = *pj;
+                &mut copy_j
+            };
+            f(a, b)
+        }
+    }
+}
+
+/// Runs `work` on every thread of `pool` (or on this thread alone), each with its
+/// `SolverThread`. A panic on any thread releases the others and is passed on.
+pub(crate) fn run_on_threads(pool: Option<&rayon::ThreadPool>, work: impl Fn(SolverThread) + Sync) {
+    let Some(pool) = pool.filter(|pool| pool.current_num_threads() > 1) else {
+        work(SolverThread::ALONE);
+        return;
+    };
+    let barrier = SpinBarrier::new(pool.current_num_threads());
+    let results = pool.broadcast(|context| {
+        let thread = SolverThread::new(context.index(), &barrier);
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(thread)))
+            .inspect_err(|_| barrier.poison())
+    });
+    // Pass on the panic that caused the others (they only stopped waiting for it).
+    let mut panics: Vec<_> = results.into_iter().filter_map(Result::err).collect();
+    let released =
+        |payload: &Box<dyn std::any::Any + Send>| payload.downcast_ref::<&str>() == Some(&RELEASED);
+    if let Some(cause) =
+        panics.iter().position(|p| !released(p)).or(if panics.is_empty() { None } else { Some(0) })
+    {
+        std::panic::resume_unwind(panics.swap_remove(cause));
+    }
+}
