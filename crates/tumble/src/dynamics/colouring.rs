@@ -9,15 +9,14 @@
 //! the other.
 //!
 //! The solver then sweeps the constraints colour by colour (a Gauss–Seidel sweep in colour order,
-//! as in Box2D v3's solver). The constraints are stored in that order, so a colour is one
-//! contiguous run that splits into chunks for the threads.
+//! as in Box2D v3's solver). The constraints are prepared straight into that order, so a colour is
+//! one contiguous run that splits into shares for the threads.
 //!
 //! Within a colour a body that does not move may appear in many constraints at once; each works on
 //! a private copy of it (solver_threads.rs, `with_pair`).
 
 use std::ops::Range;
 
-use crate::dynamics::contact_solver::ContactConstraint;
 use crate::dynamics::solver_body::SolverBody;
 
 /// Colours before the overflow. Bodies in a box pyramid touch at most about a dozen others.
@@ -35,34 +34,34 @@ pub(crate) struct ContactColouring {
     body_colours: Vec<u64>,
     /// Per constraint, in input order: its colour (`COLOUR_COUNT` = overflow).
     colour_of: Vec<u8>,
-    /// Per colour, then the overflow: the run of constraints it holds after `sort`.
+    /// Per colour, then the overflow: the run of constraints it holds in colour order.
     runs: Vec<Range<usize>>,
     /// See `stages`.
     stages: Vec<(Range<usize>, bool)>,
-    /// Input index of each constraint in colour order.
-    order: Vec<usize>,
-    /// The constraints in colour order, while they are being moved.
-    sorted: Vec<ContactConstraint>,
+    /// Per constraint, in input order: its place in colour order.
+    slot_of: Vec<usize>,
 }
 
 impl ContactColouring {
-    /// Colours `contacts` and puts them in colour order (stable: input order within a colour).
-    pub fn sort(&mut self, contacts: &mut Vec<ContactConstraint>, bodies: &[SolverBody]) {
+    /// Colours the constraints between the body pairs `pairs` (in input order) and returns how
+    /// many there are; `slot` then gives each one's place in colour order (input order within a
+    /// colour).
+    pub fn colour(&mut self, pairs: impl Iterator<Item = (usize, usize)>, bodies: &[SolverBody]) -> usize {
         self.body_colours.clear();
         self.body_colours.resize(bodies.len(), 0);
         self.colour_of.clear();
         let mut counts = [0usize; COLOUR_COUNT + 1];
-        for c in contacts.iter() {
+        for (body_a, body_b) in pairs {
             let moving = |i: usize| bodies[i].is_dynamic();
             let mut used = 0u64;
-            for i in [c.body_a, c.body_b] {
+            for i in [body_a, body_b] {
                 if moving(i) {
                     used |= self.body_colours[i];
                 }
             }
             let colour = (used.trailing_ones() as usize).min(COLOUR_COUNT);
             if colour < COLOUR_COUNT {
-                for i in [c.body_a, c.body_b] {
+                for i in [body_a, body_b] {
                     if moving(i) {
                         self.body_colours[i] |= 1 << colour;
                     }
@@ -80,16 +79,12 @@ impl ContactColouring {
             start += count;
         }
         let mut next: [usize; COLOUR_COUNT + 1] = std::array::from_fn(|colour| self.runs[colour].start);
-        self.order.clear();
-        self.order.resize(contacts.len(), 0);
-        for (input, &colour) in self.colour_of.iter().enumerate() {
+        self.slot_of.clear();
+        for &colour in &self.colour_of {
             let slot = &mut next[usize::from(colour)];
-            self.order[*slot] = input;
+            self.slot_of.push(*slot);
             *slot += 1;
         }
-        self.sorted.clear();
-        self.sorted.extend(self.order.iter().map(|&input| contacts[input].clone()));
-        std::mem::swap(contacts, &mut self.sorted);
 
         self.stages.clear();
         for (colour, run) in self.runs.iter().enumerate() {
@@ -100,6 +95,13 @@ impl ContactColouring {
                 _ => self.stages.push((run.clone(), split)),
             }
         }
+        self.slot_of.len()
+    }
+
+    /// The place in colour order of the constraint `input` (in input order). A permutation of
+    /// `0..count`.
+    pub fn slot(&self, input: usize) -> usize {
+        self.slot_of[input]
     }
 
     /// The solver's stages over the constraints in colour order: a colour with enough constraints

@@ -31,7 +31,6 @@
 //! Accumulated impulses are kept per point (matched by feature id across steps) and applied again
 //! at every substep's warm start.
 
-use crate::collision::ProxyKey;
 use crate::dynamics::contact_block::{NormalBlock, MAX_POINTS};
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
@@ -242,8 +241,6 @@ pub(crate) fn normal_coupling(
 /// A manifold prepared for the solver.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactConstraint {
-    /// The contact this came from (its proxy pair).
-    pub key: (ProxyKey, ProxyKey),
     /// Each side's radius of curvature: a sphere's or capsule's radius, whose contact point stays
     /// at the bottom as the body rolls, or 0 for a corner or face that carries it along (see
     /// `anchors`).
@@ -284,11 +281,30 @@ fn apply_point_impulses(
 }
 
 impl ContactConstraint {
+    /// A placeholder, before `prepare`.
+    pub const EMPTY: ContactConstraint = ContactConstraint {
+        radii: (0.0, 0.0),
+        body_a: 0,
+        body_b: 0,
+        normal: DVec3::Z,
+        com_offset: DVec3::ZERO,
+        material: ContactMaterial {
+            friction: 0.0,
+            restitution: 0.0,
+            rolling_friction: 0.0,
+            torsional_friction: 0.0,
+        },
+        points: [PointConstraint::EMPTY; 4],
+        point_count: 0,
+        friction: PatchFriction::EMPTY,
+        rolling_impulse: DVec3::ZERO,
+        torsional_impulse: 0.0,
+    };
+
     /// Stage "prepare" for one manifold. `com_a`, `com_b` are the centres of mass at the step
     /// start; a manifold against a static or kinematic body gets the stiffer static softness.
     #[allow(clippy::too_many_arguments)]
     pub fn prepare(
-        key: (ProxyKey, ProxyKey),
         (body_a, body_b): (usize, usize),
         (a, b): (&SolverBody, &SolverBody),
         (com_a, com_b): (DVec3, DVec3),
@@ -301,7 +317,6 @@ impl ContactConstraint {
         let hertz =
             if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
         let mut constraint = ContactConstraint {
-            key,
             radii,
             body_a,
             body_b,
@@ -529,11 +544,6 @@ impl ContactConstraint {
         for pc in &mut self.points[..self.point_count] {
             pc.steady_normal_impulse += rate * (pc.normal_impulse - pc.steady_normal_impulse);
         }
-    }
-
-    /// Whether the contact can bounce at all.
-    pub fn has_restitution(&self) -> bool {
-        self.material.restitution != 0.0
     }
 
     /// Stage "restitution", after every substep's relax pass: points that approached faster than

@@ -17,11 +17,13 @@
 //! rest without jitter or energy gain.
 
 use crate::body::{Body, BodyKind};
+use crate::collision::contact_manager::leaf;
+use crate::dynamics::contact::Contact;
 use crate::dynamics::contact_solver::{ContactConstraint, ContactPointInput};
 use crate::dynamics::joint::Joint;
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
-use crate::dynamics::solver_threads::{run_on_threads, SolveData};
+use crate::dynamics::solver_threads::{run_on_threads, ColouredContacts, SolveData};
 use crate::id::SlotPool;
 use crate::math::DVec3;
 use crate::shape::Shape;
@@ -215,55 +217,30 @@ impl World {
             trees.clear(&mut self.joints);
         }
 
-        // Prepare contacts: every touching, non-sensor manifold with a body that can move.
+        // Prepare contacts: every touching, non-sensor manifold with a body that can move, each
+        // into its place in colour order — a colour's rows share no moving body, so a colour is
+        // solved on all threads at once, with the same result for any thread count (colouring.rs).
         let mut contacts = std::mem::take(&mut self.contact_constraints);
-        contacts.clear();
-        for (key, contact) in &self.contact_manager.contacts {
-            let Some(manifold) = contact.manifold.as_ref().filter(|_| contact.touching && !contact.sensor)
-            else {
-                continue;
-            };
-            let (ia, ib) = (contact.body_a.index(), contact.body_b.index());
-            if bodies[ia].inv_mass == 0.0 && bodies[ib].inv_mass == 0.0 {
-                continue;
-            }
-            let (Some(a), Some(b)) = (self.bodies.iter_slot(ia), self.bodies.iter_slot(ib)) else { continue };
-            // Round sides (spheres, capsules) keep their contact at the bottom as they roll.
-            let radius = |body: &Body, child: u32| match body
-                .shape()
-                .map(|shape| crate::collision::contact_manager::leaf(shape, child).0)
-            {
-                Some(Shape::Sphere(s)) => s.radius,
-                Some(Shape::Capsule(c)) => c.radius,
-                _ => 0.0,
-            };
-            let radii = (radius(a, contact.child_a), radius(b, contact.child_b));
-            let mut points = [ContactPointInput::default(); 4];
-            for ((input, point), impulse) in points.iter_mut().zip(manifold.points()).zip(&contact.impulses) {
-                *input = ContactPointInput {
-                    point_world: point.point_world,
-                    separation: point.separation,
-                    impulse: *impulse,
-                };
-            }
-            contacts.push(ContactConstraint::prepare(
-                *key,
-                (ia, ib),
-                (&bodies[ia], &bodies[ib]),
-                (a.com_world(), b.com_world()),
-                radii,
-                manifold.normal_world,
-                &points[..manifold.len()],
-                contact.material,
-                &ctx,
-            ));
-        }
-
-        // Colour the contacts so that each colour's rows share no moving body: a colour is solved
-        // on all threads at once, with the same result for any thread count (colouring.rs).
         let mut colouring = std::mem::take(&mut self.contact_colouring);
-        colouring.sort(&mut contacts, &bodies);
-        let restitution = contacts.iter().any(|c| c.has_restitution());
+        let (manager, world_bodies) = (&self.contact_manager, &self.bodies);
+        let solved = || manager.contacts.values().filter(|c| takes_part(c, &bodies, world_bodies));
+        let mut restitution = false;
+        let count = colouring.colour(
+            solved()
+                .inspect(|c| restitution |= c.material.restitution != 0.0)
+                .map(|c| (c.body_a.index(), c.body_b.index())),
+            &bodies,
+        );
+        contacts.resize(count, ContactConstraint::EMPTY);
+        {
+            let coloured = ColouredContacts::new(&mut contacts, &colouring);
+            run_on_threads(self.pool.as_deref(), |thread| {
+                let mine = thread.share(0..count);
+                for (input, contact) in solved().enumerate().skip(mine.start).take(mine.len()) {
+                    coloured.put(thread, input, prepare_contact(contact, &bodies, world_bodies, &ctx));
+                }
+            });
+        }
         let has_joints = self.joints.iter().any(|(_, joint)| joint.solving);
 
         // The substeps, on every thread of the pool at once (solver_threads.rs).
@@ -303,16 +280,17 @@ impl World {
                 }
             }
         });
-        self.contact_colouring = colouring;
 
-        // Keep the impulses for the next step's warm start.
-        for c in &contacts {
-            if let Some(contact) = self.contact_manager.contacts.get_mut(&c.key) {
-                for (slot, impulse) in contact.impulses.iter_mut().zip(c.impulses()) {
-                    *slot = impulse;
-                }
+        // Keep the impulses for the next step's warm start (the same contacts in the same order).
+        let (manager, world_bodies) = (&mut self.contact_manager, &self.bodies);
+        let solved = manager.contacts.values_mut().filter(|c| takes_part(c, &bodies, world_bodies));
+        for (input, contact) in solved.enumerate() {
+            for (slot, impulse) in contact.impulses.iter_mut().zip(contacts[colouring.slot(input)].impulses())
+            {
+                *slot = impulse;
             }
         }
+        self.contact_colouring = colouring;
         self.contact_constraints = contacts;
         self.joint_trees = trees;
 
@@ -329,6 +307,57 @@ impl World {
         }
         self.solver_bodies = bodies;
     }
+}
+
+/// Whether the solver takes a contact: touching, not a sensor, with a body that can move.
+fn takes_part(contact: &Contact, bodies: &[SolverBody], world_bodies: &SlotPool<Body>) -> bool {
+    let (ia, ib) = (contact.body_a.index(), contact.body_b.index());
+    contact.manifold.is_some()
+        && contact.touching
+        && !contact.sensor
+        && (bodies[ia].inv_mass != 0.0 || bodies[ib].inv_mass != 0.0)
+        && world_bodies.iter_slot(ia).is_some()
+        && world_bodies.iter_slot(ib).is_some()
+}
+
+/// The solver's rows of one contact that `takes_part`.
+fn prepare_contact(
+    contact: &Contact,
+    bodies: &[SolverBody],
+    world_bodies: &SlotPool<Body>,
+    ctx: &StepContext,
+) -> ContactConstraint {
+    let (ia, ib) = (contact.body_a.index(), contact.body_b.index());
+    let (Some(manifold), Some(a), Some(b)) =
+        (contact.manifold.as_ref(), world_bodies.iter_slot(ia), world_bodies.iter_slot(ib))
+    else {
+        unreachable!("takes_part checked the manifold and the bodies")
+    };
+    // Round sides (spheres, capsules) keep their contact at the bottom as they roll.
+    let radius = |body: &Body, child: u32| match body.shape().map(|shape| leaf(shape, child).0) {
+        Some(Shape::Sphere(s)) => s.radius,
+        Some(Shape::Capsule(c)) => c.radius,
+        _ => 0.0,
+    };
+    let radii = (radius(a, contact.child_a), radius(b, contact.child_b));
+    let mut points = [ContactPointInput::default(); 4];
+    for ((input, point), impulse) in points.iter_mut().zip(manifold.points()).zip(&contact.impulses) {
+        *input = ContactPointInput {
+            point_world: point.point_world,
+            separation: point.separation,
+            impulse: *impulse,
+        };
+    }
+    ContactConstraint::prepare(
+        (ia, ib),
+        (&bodies[ia], &bodies[ib]),
+        (a.com_world(), b.com_world()),
+        radii,
+        manifold.normal_world,
+        &points[..manifold.len()],
+        contact.material,
+        ctx,
+    )
 }
 
 /// Calls `f` for every active joint with its two solver bodies, in joint-slot order.

@@ -187,6 +187,29 @@ impl<'a, S: Send> SolveData<'a, S> {
     }
 }
 
+/// The contact constraints in colour order, filled by the solver's threads from the contacts in
+/// input order (each thread its share of the inputs, each input to its own slot).
+pub(crate) struct ColouredContacts<'a> {
+    contacts: Shared<'a, ContactConstraint>,
+    colouring: &'a ContactColouring,
+}
+
+impl<'a> ColouredContacts<'a> {
+    /// `contacts` must be as long as `colouring` has constraints.
+    pub fn new(contacts: &'a mut [ContactConstraint], colouring: &'a ContactColouring) -> Self {
+        ColouredContacts { contacts: Shared::new(contacts), colouring }
+    }
+
+    /// Stores the constraint of input `input`, which must be in `thread`'s share of the inputs.
+    pub fn put(&self, thread: SolverThread, input: usize, constraint: ContactConstraint) {
+        assert!(thread.share(0..self.contacts.len).contains(&input), "input outside this thread's share");
+        let slot = self.colouring.slot(input);
+        // SAFETY: the shares of the threads are disjoint, and `slot` is a permutation, so no other
+        // thread writes this slot (nor reads it until the threads have finished).
+        unsafe { self.contacts.slice(slot..slot + 1)[0] = constraint };
+    }
+}
+
 /// A slice the solver's threads share, each writing only elements no other thread touches until
 /// the next barrier.
 struct Shared<'a, T> {
