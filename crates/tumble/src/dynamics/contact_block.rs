@@ -86,114 +86,108 @@ impl NormalBlock {
 
     /// The increments with the rows in `active` free and the others released (their accumulated
     /// impulse taken away: their increment is fixed at `−accumulated`).
+    ///
+    /// Always a 4×4 system, whatever the count: a released or unused row becomes a unit row with a
+    /// zero right-hand side (its solution is 0, and it couples to nothing), so the factorisation
+    /// has fixed loop bounds the compiler unrolls.
     fn solve_with(
         &self,
         active: &[bool; MAX_POINTS],
         accumulated: &[f64; MAX_POINTS],
     ) -> Option<[f64; MAX_POINTS]> {
         let n = self.count;
+        let free = |i: usize| i < n && active[i];
         let mut m = [[0.0; MAX_POINTS]; MAX_POINTS];
         let mut b = [0.0; MAX_POINTS];
-        let mut index = [0usize; MAX_POINTS];
-        let mut size = 0;
-        for i in (0..n).filter(|&i| active[i]) {
-            index[size] = i;
-            size += 1;
-        }
-        for (row, &i) in index[..size].iter().enumerate() {
-            b[row] = self.rhs[i];
-            for j in (0..n).filter(|&j| !active[j]) {
-                b[row] += self.matrix[i][j] * accumulated[j];
+        let mut scale = 0.0_f64;
+        for i in 0..MAX_POINTS {
+            if !free(i) {
+                m[i][i] = 1.0;
+                continue;
             }
-            for (col, &j) in index[..size].iter().enumerate() {
-                m[row][col] = self.matrix[i][j];
+            scale = scale.max(self.matrix[i][i]);
+            b[i] = self.rhs[i];
+            for j in 0..MAX_POINTS {
+                if free(j) {
+                    m[i][j] = self.matrix[i][j];
+                } else if j < n {
+                    b[i] += self.matrix[i][j] * accumulated[j];
+                }
             }
         }
-        let x = solve_spd(&mut m, &mut b, size)?;
+        let any_free = (0..n).any(free);
+        let x = if any_free { Ldlt::factor(&m, scale)?.solve(&b) } else { [0.0; MAX_POINTS] };
         let mut delta = [0.0; MAX_POINTS];
-        for i in (0..n).filter(|&i| !active[i]) {
-            delta[i] = -accumulated[i];
-        }
-        for (row, &i) in index[..size].iter().enumerate() {
-            delta[i] = x[row];
+        for i in 0..n {
+            delta[i] = if free(i) { x[i] } else { -accumulated[i] };
         }
         Some(delta)
     }
 }
 
-/// The Cholesky factor `L` (`m + εI = L Lᵀ`) of a symmetric positive (semi-)definite system of up
-/// to four rows, with a relative regularisation `ε` of `1e-9` of the largest diagonal entry so that
-/// the singular systems of coplanar points give their least-norm solution.
-#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
-pub(crate) struct Cholesky {
+/// The factors `L D Lᵀ = m + εI` of a symmetric positive (semi-)definite 4×4 system, with a
+/// regularisation `ε` of `1e-9` of `scale` (the largest diagonal entry of the rows that matter) so
+/// that the singular systems of coplanar points give their least-norm solution. No square roots:
+/// `L` has a unit diagonal.
+#[derive(Clone, Copy, Debug)]
+struct Ldlt {
     l: [[f64; MAX_POINTS]; MAX_POINTS],
-    n: usize,
+    inv_d: [f64; MAX_POINTS],
 }
 
-impl Cholesky {
+impl Ldlt {
     /// `None` when the matrix is not positive (a degenerate manifold).
-    pub fn factor(m: &[[f64; MAX_POINTS]; MAX_POINTS], n: usize) -> Option<Cholesky> {
-        let mut l = *m;
-        if n == 0 {
-            return Some(Cholesky { l, n });
-        }
-        let scale = (0..n).map(|i| m[i][i]).fold(0.0_f64, f64::max);
-        if !(scale > 0.0) || !scale.is_finite() {
+    fn factor(m: &[[f64; MAX_POINTS]; MAX_POINTS], scale: f64) -> Option<Ldlt> {
+        if !(scale > 0.0 && scale.is_finite()) {
             return None;
         }
         let epsilon = 1e-9 * scale;
-        // In place: the lower triangle becomes L.
-        for j in 0..n {
-            let mut d = l[j][j] + epsilon;
+        let mut l = [[0.0; MAX_POINTS]; MAX_POINTS];
+        let mut d = [0.0; MAX_POINTS];
+        let mut inv_d = [0.0; MAX_POINTS];
+        for j in 0..MAX_POINTS {
+            let mut dj = m[j][j] + epsilon;
             for k in 0..j {
-                d -= l[j][k] * l[j][k];
+                dj -= l[j][k] * l[j][k] * d[k];
             }
-            if !(d > 0.0) {
+            if !(dj > 0.0) {
                 return None;
             }
-            let l_jj = d.sqrt();
-            l[j][j] = l_jj;
-            for i in j + 1..n {
-                let mut s = l[i][j];
+            d[j] = dj;
+            inv_d[j] = 1.0 / dj;
+            l[j][j] = 1.0;
+            for i in j + 1..MAX_POINTS {
+                let mut s = m[i][j];
                 for k in 0..j {
-                    s -= l[i][k] * l[j][k];
+                    s -= l[i][k] * l[j][k] * d[k];
                 }
-                l[i][j] = s / l_jj;
+                l[i][j] = s * inv_d[j];
             }
         }
-        Some(Cholesky { l, n })
+        Some(Ldlt { l, inv_d })
     }
 
-    /// `x` with `L Lᵀ x = b`.
-    pub fn solve(&self, b: &[f64; MAX_POINTS]) -> [f64; MAX_POINTS] {
-        let (l, n) = (&self.l, self.n);
+    /// `x` with `L D Lᵀ x = b`.
+    fn solve(&self, b: &[f64; MAX_POINTS]) -> [f64; MAX_POINTS] {
+        let l = &self.l;
         let mut y = [0.0; MAX_POINTS];
-        for i in 0..n {
+        for i in 0..MAX_POINTS {
             let mut s = b[i];
             for k in 0..i {
                 s -= l[i][k] * y[k];
             }
-            y[i] = s / l[i][i];
+            y[i] = s;
         }
         let mut x = [0.0; MAX_POINTS];
-        for i in (0..n).rev() {
-            let mut s = y[i];
-            for k in i + 1..n {
+        for i in (0..MAX_POINTS).rev() {
+            let mut s = y[i] * self.inv_d[i];
+            for k in i + 1..MAX_POINTS {
                 s -= l[k][i] * x[k];
             }
-            x[i] = s / l[i][i];
+            x[i] = s;
         }
         x
     }
-}
-
-/// Solves `m x = b` of size `n` (see `Cholesky`); `None` when `m` is not positive.
-fn solve_spd(
-    m: &mut [[f64; MAX_POINTS]; MAX_POINTS],
-    b: &mut [f64; MAX_POINTS],
-    n: usize,
-) -> Option<[f64; MAX_POINTS]> {
-    Some(Cholesky::factor(m, n)?.solve(b))
 }
 
 #[cfg(test)]

@@ -173,7 +173,7 @@ pub(crate) fn round_anchors(
     a: &SolverBody,
     b: &SolverBody,
 ) -> (DVec3, DVec3) {
-    (a.q * r_a_local + radii.0 * n, b.q * r_b_local - radii.1 * n)
+    (a.rotation * r_a_local + radii.0 * n, b.rotation * r_b_local - radii.1 * n)
 }
 
 /// The inverse of `k`'s block on the plane perpendicular to `normal`, as a 3×3 that maps the

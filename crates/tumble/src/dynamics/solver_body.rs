@@ -23,6 +23,9 @@ pub(crate) struct SolverBody {
     pub inv_mass: f64,
     /// World inverse inertia for the current `q` (refreshed after every position update).
     pub inv_inertia: DMat3,
+    /// `q` as a matrix (body frame to world), refreshed with it: the contacts turn their material
+    /// points with it several times a substep, and a matrix does that in half the operations.
+    pub rotation: DMat3,
     kind: BodyKind,
     inertia_principal: DVec3,
     principal_rotation_local: DQuat,
@@ -42,6 +45,7 @@ impl SolverBody {
         q: DQuat::IDENTITY,
         inv_mass: 0.0,
         inv_inertia: DMat3::ZERO,
+        rotation: DMat3::IDENTITY,
         kind: BodyKind::Static,
         inertia_principal: DVec3::ONE,
         principal_rotation_local: DQuat::IDENTITY,
@@ -60,6 +64,7 @@ impl SolverBody {
             q: body.state.rotation,
             inv_mass: body.inverse_mass,
             inv_inertia: body.inverse_inertia_world(),
+            rotation: DMat3::from_quat(body.state.rotation),
             kind: body.kind,
             inertia_principal: body.inertia_principal,
             principal_rotation_local: body.principal_rotation_local,
@@ -142,6 +147,7 @@ impl SolverBody {
             BodyKind::Kinematic => {
                 self.dp += h * self.v;
                 self.q = rotate_by_angular_velocity(self.q, self.w, h);
+                self.rotation = DMat3::from_quat(self.q);
             }
             BodyKind::Dynamic => {
                 self.dp += h * self.v;
@@ -151,6 +157,7 @@ impl SolverBody {
                 let (q_principal, l_principal) = free_rotation_flow(q_principal, l_principal, inertia, h);
                 self.w = q_principal * (l_principal / inertia);
                 self.q = (q_principal * self.principal_rotation_local.inverse()).normalize();
+                self.rotation = DMat3::from_quat(self.q);
                 self.refresh_inverse_inertia();
                 if self.torque != DVec3::ZERO {
                     self.w += self.inv_inertia * (0.5 * h * self.torque);
