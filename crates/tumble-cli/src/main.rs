@@ -87,7 +87,7 @@ enum Command {
         /// which is run for its step count (or --duration) without a recording.
         #[arg(long)]
         profile: bool,
-        /// Threads for the collision pipeline (results are identical for any count).
+        /// Threads for the collision pipeline and the solver (results are identical for any count).
         #[arg(long, value_name = "N", default_value_t = 1)]
         threads: usize,
     },
@@ -97,7 +97,7 @@ enum Command {
     Bench {
         /// The scene's name.
         scene: String,
-        /// Threads for the collision pipeline (results are identical for any count).
+        /// Threads for the collision pipeline and the solver (results are identical for any count).
         #[arg(long, value_name = "N", default_value_t = 1)]
         threads: usize,
         /// Steps per run [default: the scene's own count].

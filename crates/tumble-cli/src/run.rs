@@ -24,7 +24,7 @@ pub struct RunOptions {
     pub every: u64,
     pub duration: f64,
     pub dt: f64,
-    /// Threads for the collision pipeline.
+    /// Threads for the collision pipeline and the solver.
     pub threads: usize,
     pub checkpoint: Option<Checkpointing>,
 }

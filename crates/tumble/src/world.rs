@@ -90,7 +90,7 @@ pub struct World {
     /// Wall time per phase of `step` (never part of the state: not saved, not hashed).
     #[serde(skip)]
     pub(crate) profile: crate::profile::StepProfile,
-    /// The threads the collision pipeline may use; `None` runs it on the calling thread. Not
+    /// The threads the collision pipeline and the solver may use; `None` runs it on the calling thread. Not
     /// saved: a restored world runs on one thread until told otherwise.
     #[serde(skip)]
     pub(crate) pool: Option<std::sync::Arc<rayon::ThreadPool>>,
@@ -203,14 +203,16 @@ impl World {
         self.sleep_settings = settings;
     }
 
-    /// The number of threads the collision pipeline uses (1: the calling thread only).
+    /// The number of threads the collision pipeline and the solver use (1: the calling thread only).
     pub fn threads(&self) -> usize {
         self.pool.as_ref().map_or(1, |p| p.current_num_threads())
     }
 
-    /// Runs the collision pipeline on `threads` threads of a pool owned by the world (1 or 0: on
-    /// the calling thread, no pool). The work is split by the scene, never by the thread count,
-    /// and merged in a fixed order, so every thread count gives bit-identical results.
+    /// Runs the collision pipeline and the solver on `threads` threads of a pool owned by the
+    /// world (1 or 0: on the calling thread, no pool). The work is split by the scene, never by
+    /// the thread count (the solver's by graph colouring, `dynamics/colouring.rs`), and merged in
+    /// a fixed order, so every thread count gives bit-identical results. The solver's threads spin
+    /// while they wait for each other within a step: more threads than free cores slows it down.
     pub fn set_threads(&mut self, threads: usize) -> Result<(), WorldError> {
         self.pool = if threads <= 1 {
             None

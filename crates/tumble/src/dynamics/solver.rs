@@ -169,6 +169,12 @@ pub(crate) fn pair_mut<T>(items: &mut [T], i: usize, j: usize) -> (&mut T, &mut 
     }
 }
 
+/// Contacts below which they are prepared on one thread.
+const PARALLEL_MIN_CONTACTS: usize = 128;
+
+/// Bodies from which the body stages alone make threads worth their barriers.
+const PARALLEL_MIN_BODIES: usize = 1024;
+
 impl World {
     /// Runs the solver stages for one step of `dt` (see the module docs for the order), on the
     /// world's threads if it has them.
@@ -234,7 +240,9 @@ impl World {
         contacts.resize(count, ContactConstraint::EMPTY);
         {
             let coloured = ColouredContacts::new(&mut contacts, &colouring);
-            run_on_threads(self.pool.as_deref(), |thread| {
+            // Threads only where there are enough contacts to share (the result is the same).
+            let pool = self.pool.as_deref().filter(|_| count >= PARALLEL_MIN_CONTACTS);
+            run_on_threads(pool, |thread| {
                 let mine = thread.share(0..count);
                 for (input, contact) in solved().enumerate().skip(mine.start).take(mine.len()) {
                     coloured.put(thread, input, prepare_contact(contact, &bodies, world_bodies, &ctx));
@@ -244,10 +252,15 @@ impl World {
         let has_joints = self.joints.iter().any(|(_, joint)| joint.solving);
 
         // The substeps, on every thread of the pool at once (solver_threads.rs).
+        // Threads only where some stage is split between them: waiting at barriers for stages that
+        // are not (a chain of joints) only costs. The result is the same either way.
+        let worth_threads =
+            colouring.stages().iter().any(|&(_, split)| split) || bodies.len() >= PARALLEL_MIN_BODIES;
+        let pool = self.pool.as_deref().filter(|_| worth_threads);
         let mut serial = (&mut self.joints, &mut trees);
         let data = SolveData::new(&mut bodies, &mut contacts, &colouring, &mut serial);
         let ctx = &ctx;
-        run_on_threads(self.pool.as_deref(), |thread| {
+        run_on_threads(pool, |thread| {
             let joint_stage = |f: &dyn Fn(&mut Joint, &mut SolverBody, &mut SolverBody)| {
                 if has_joints {
                     data.serial(thread, |(joints, _), bodies| for_each_joint(joints, bodies, f));
