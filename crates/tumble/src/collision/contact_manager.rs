@@ -57,6 +57,9 @@ const NARROW_PHASE_CHUNK: usize = 32;
 /// Bodies handed to one task when the proxies' boxes are computed on threads.
 const PROXY_CHUNK: usize = 64;
 
+/// Chunks of work below which a phase runs on the calling thread.
+const MIN_SHARED_CHUNKS: usize = 4;
+
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactManager {
     pub broad_phase: BroadPhase,
@@ -115,7 +118,8 @@ impl ContactManager {
     /// order, as on one thread.
     pub fn update_proxies(&mut self, bodies: &SlotPool<Body>, dt: f64, pool: Option<&rayon::ThreadPool>) {
         let moving = |body: &&Body| body.kind != BodyKind::Static && body.is_awake();
-        let Some(pool) = pool else {
+        // Threads only for enough bodies to share (the result is the same either way).
+        let Some(pool) = pool.filter(|_| bodies.len() >= MIN_SHARED_CHUNKS * PROXY_CHUNK) else {
             for (_, body) in bodies.iter() {
                 if moving(&body) {
                     self.move_body_proxies(body, dt);
@@ -207,7 +211,10 @@ impl ContactManager {
             let b = bodies.get(contact.body_b.into())?;
             overlap.then_some((a, b))
         };
-        let Some(pool) = pool else {
+        // Threads only for enough contacts to share (the result is the same either way): for a
+        // chain's few contacts they cost more than the work.
+        let Some(pool) = pool.filter(|_| self.contacts.len() >= MIN_SHARED_CHUNKS * NARROW_PHASE_CHUNK)
+        else {
             // On one thread: drop, update and record in a single walk over the contacts.
             self.contacts.retain(|_, contact| {
                 let Some((a, b)) = kept(contact) else {
