@@ -25,11 +25,12 @@
 //! solve with the rows of a guessed set free, then move the first row that breaks a condition
 //! (a free row that would pull, a released row that would approach) to the other set, and repeat.
 //! It ends within `2ⁿ` pivots in exact arithmetic; should round-off make it cycle on a nearly
-//! singular block, projected Gauss–Seidel sweeps give a bounded answer instead. (Releasing every pulling row at once and never taking one back, as
-//! this did before, is not the solution when rows are coupled: a row pulled below zero only by a
-//! coupled row's large pull was dropped with it; the contact let a corner pass 4 cm into a wall in
-//! one substep, and in the relax pass took back more impulse than the target allowed, which added
-//! energy — docs/solver.md, "Fast spinning bodies".)
+//! singular block, projected Gauss–Seidel sweeps give a bounded answer instead. (Releasing every
+//! pulling row at once and never taking one back, as this did before, is not the solution when
+//! rows are coupled: a row pulled below zero only by a coupled row's large pull was dropped with
+//! it; the contact let a corner pass 4 cm into a wall in one substep, and in the relax pass took
+//! back more impulse than the target allowed, which added energy — docs/solver.md, "Fast spinning
+//! bodies".)
 
 /// At most four points per manifold.
 pub(crate) const MAX_POINTS: usize = 4;

@@ -251,9 +251,9 @@ impl World {
         }
         let has_joints = self.joints.iter().any(|(_, joint)| joint.solving);
 
-        // The substeps, on every thread of the pool at once (solver_threads.rs).
-        // Threads only where some stage is split between them: waiting at barriers for stages that
-        // are not (a chain of joints) only costs. The result is the same either way.
+        // The substeps, on every thread of the pool at once (solver_threads.rs) — where some stage
+        // is split between them: waiting at barriers for stages that are not (a chain of joints)
+        // only costs. The result is the same either way.
         let worth_threads =
             colouring.stages().iter().any(|&(_, split)| split) || bodies.len() >= PARALLEL_MIN_BODIES;
         let pool = self.pool.as_deref().filter(|_| worth_threads);
