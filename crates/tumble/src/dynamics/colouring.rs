@@ -20,7 +20,7 @@ use std::ops::Range;
 use crate::dynamics::solver_body::SolverBody;
 
 /// Colours before the overflow. Bodies in a box pyramid touch at most about a dozen others.
-pub(crate) const COLOUR_COUNT: usize = 32;
+const COLOUR_COUNT: usize = 32;
 
 /// A colour's constraints are split between threads only when there are at least this many: below
 /// that the hand-over costs more than it saves.
@@ -34,8 +34,6 @@ pub(crate) struct ContactColouring {
     body_colours: Vec<u64>,
     /// Per constraint, in input order: its colour (`COLOUR_COUNT` = overflow).
     colour_of: Vec<u8>,
-    /// Per colour, then the overflow: the run of constraints it holds in colour order.
-    runs: Vec<Range<usize>>,
     /// See `stages`.
     stages: Vec<(Range<usize>, bool)>,
     /// Per constraint, in input order: its place in colour order.
@@ -71,14 +69,13 @@ impl ContactColouring {
             counts[colour] += 1;
         }
 
-        // Counting sort: each colour's run starts where the previous one ends.
-        self.runs.clear();
+        // Counting sort: each colour's run (then the overflow's) starts where the previous one ends.
         let mut start = 0;
-        for count in counts {
-            self.runs.push(start..start + count);
-            start += count;
-        }
-        let mut next: [usize; COLOUR_COUNT + 1] = std::array::from_fn(|colour| self.runs[colour].start);
+        let runs: [Range<usize>; COLOUR_COUNT + 1] = std::array::from_fn(|colour| {
+            start += counts[colour];
+            start - counts[colour]..start
+        });
+        let mut next: [usize; COLOUR_COUNT + 1] = std::array::from_fn(|colour| runs[colour].start);
         self.slot_of.clear();
         for &colour in &self.colour_of {
             let slot = &mut next[usize::from(colour)];
@@ -87,7 +84,7 @@ impl ContactColouring {
         }
 
         self.stages.clear();
-        for (colour, run) in self.runs.iter().enumerate() {
+        for (colour, run) in runs.iter().enumerate() {
             let split = colour < COLOUR_COUNT && run.len() >= PARALLEL_MIN_CONSTRAINTS;
             match self.stages.last_mut() {
                 _ if run.is_empty() => {}

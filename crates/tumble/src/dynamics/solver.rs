@@ -310,7 +310,7 @@ impl World {
         // Store: constraint forces and joint breaking, then write the bodies back.
         for (_, joint) in self.joints.iter_mut() {
             if joint.solving {
-                joint.store(&ctx);
+                joint.store(ctx);
             }
         }
         for (id, body) in self.bodies.iter_mut() {

@@ -118,6 +118,12 @@ impl SolverBody {
         Some((1.0 / self.inv_mass, r * DMat3::from_diagonal(self.inertia_principal) * r.transpose()))
     }
 
+    /// Sets `q` and the `rotation` matrix that goes with it.
+    fn set_orientation(&mut self, q: DQuat) {
+        self.q = q;
+        self.rotation = DMat3::from_quat(q);
+    }
+
     fn refresh_inverse_inertia(&mut self) {
         let r = DMat3::from_quat(self.q * self.principal_rotation_local);
         self.inv_inertia = r * DMat3::from_diagonal(self.inertia_principal.recip()) * r.transpose();
@@ -146,8 +152,7 @@ impl SolverBody {
             BodyKind::Static => {}
             BodyKind::Kinematic => {
                 self.dp += h * self.v;
-                self.q = rotate_by_angular_velocity(self.q, self.w, h);
-                self.rotation = DMat3::from_quat(self.q);
+                self.set_orientation(rotate_by_angular_velocity(self.q, self.w, h));
             }
             BodyKind::Dynamic => {
                 self.dp += h * self.v;
@@ -156,8 +161,7 @@ impl SolverBody {
                 let l_principal = inertia * (q_principal.inverse() * self.w);
                 let (q_principal, l_principal) = free_rotation_flow(q_principal, l_principal, inertia, h);
                 self.w = q_principal * (l_principal / inertia);
-                self.q = (q_principal * self.principal_rotation_local.inverse()).normalize();
-                self.rotation = DMat3::from_quat(self.q);
+                self.set_orientation((q_principal * self.principal_rotation_local.inverse()).normalize());
                 self.refresh_inverse_inertia();
                 if self.torque != DVec3::ZERO {
                     self.w += self.inv_inertia * (0.5 * h * self.torque);

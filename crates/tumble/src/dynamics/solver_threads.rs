@@ -78,8 +78,10 @@ impl SpinBarrier {
 /// One thread's place among the solver's threads.
 #[derive(Clone, Copy)]
 pub(crate) struct SolverThread<'a> {
-    pub index: usize,
-    pub count: usize,
+    // Private: the shares' disjointness, which the unsafe accesses rest on, comes from each
+    // thread having its own index.
+    index: usize,
+    count: usize,
     /// `None` when there is one thread.
     barrier: Option<&'a SpinBarrier>,
 }
@@ -307,9 +309,7 @@ pub(crate) fn run_on_threads(pool: Option<&rayon::ThreadPool>, work: impl Fn(Sol
     let mut panics: Vec<_> = results.into_iter().filter_map(Result::err).collect();
     let released =
         |payload: &Box<dyn std::any::Any + Send>| payload.downcast_ref::<&str>() == Some(&RELEASED);
-    if let Some(cause) =
-        panics.iter().position(|p| !released(p)).or(if panics.is_empty() { None } else { Some(0) })
-    {
+    if let Some(cause) = panics.iter().position(|p| !released(p)).or((!panics.is_empty()).then_some(0)) {
         std::panic::resume_unwind(panics.swap_remove(cause));
     }
 }
