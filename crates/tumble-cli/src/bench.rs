@@ -14,7 +14,20 @@ pub struct BenchOptions {
     pub steps: Option<u32>,
     pub runs: usize,
     pub size: Option<usize>,
+    /// Overrides the scene's solver substeps.
+    pub substeps: Option<u32>,
     pub json: bool,
+}
+
+/// Builds a scene by name with the options' threads and substeps.
+fn build_with_options(name: &str, options: &BenchOptions) -> Result<Scene, String> {
+    let mut scene = build_scene(name, options.size)?;
+    scene.world.set_threads(options.threads).map_err(|e| e.to_string())?;
+    if let Some(substeps) = options.substeps {
+        let settings = tumble::SolverSettings { substeps, ..scene.world.solver_settings().clone() };
+        scene.world.set_solver_settings(settings).map_err(|e| e.to_string())?;
+    }
+    Ok(scene)
 }
 
 /// Builds a scene by name, or says which names there are.
@@ -60,8 +73,7 @@ pub fn bench(name: &str, options: &BenchOptions) -> Result<String, String> {
     let mut rates = Vec::with_capacity(options.runs);
     let mut last = None;
     for _ in 0..options.runs {
-        let mut scene = build_scene(name, options.size)?;
-        scene.world.set_threads(options.threads).map_err(|e| e.to_string())?;
+        let mut scene = build_with_options(name, options)?;
         let steps = options.steps.unwrap_or(scene.steps);
         let mut stepping = Duration::ZERO;
         for _ in 0..steps {
@@ -125,8 +137,7 @@ pub fn bench(name: &str, options: &BenchOptions) -> Result<String, String> {
 
 /// `tumble run SCENE --profile` for a built-in scene: one run with the per-phase profile.
 pub fn profile(name: &str, options: &BenchOptions) -> Result<String, String> {
-    let mut scene = build_scene(name, options.size)?;
-    scene.world.set_threads(options.threads).map_err(|e| e.to_string())?;
+    let mut scene = build_with_options(name, options)?;
     let steps = options.steps.unwrap_or(scene.steps);
     for _ in 0..steps {
         scene.step();

@@ -6,7 +6,7 @@
 //! tumble run SCENE [--out FILE.csv] [--every N] [--duration S] [--dt S] [--profile] [--threads N]
 //!                  [--checkpoint FILE [--checkpoint-every N]]
 //! tumble run --resume FILE    carry on a killed run from its checkpoint
-//! tumble bench NAME [--threads N] [--steps N] [--runs N] [--size N] [--json]
+//! tumble bench NAME [--threads N] [--steps N] [--runs N] [--size N] [--substeps N] [--json]
 //! tumble mass MESH [--density D]      mass properties of an OBJ/STL as JSON
 //! tumble view SCENE.toml | REC.csv --scene SCENE.toml [-o out.html]   a page that plays it in 3D
 //! tumble export SCENE.toml | REC.csv --scene SCENE.toml [-o out.glb]  glTF 2.0 animation
@@ -110,6 +110,9 @@ enum Command {
         /// or bodies [default: the scene's own].
         #[arg(long, value_name = "N")]
         size: Option<usize>,
+        /// Solver substeps per step [default: the scene's own, the engine default 8].
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+        substeps: Option<u32>,
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
@@ -213,8 +216,14 @@ fn main() -> ExitCode {
                         // A built-in scene runs its own step count, or as many steps as cover
                         // --duration.
                         let steps = duration.map(|d| run::step_count(d.max(0.0), tumble::scenes::DT) as u32);
-                        let options =
-                            bench::BenchOptions { threads, steps, runs: 1, size: None, json: false };
+                        let options = bench::BenchOptions {
+                            threads,
+                            steps,
+                            runs: 1,
+                            size: None,
+                            substeps: None,
+                            json: false,
+                        };
                         bench::profile(&name, &options)
                     } else {
                         let checkpoint =
@@ -225,16 +234,16 @@ fn main() -> ExitCode {
                 (None, None) => Err("give a scene to run, or --resume CHECKPOINT".into()),
             }
         }
-        Some(Command::Bench { scene, threads, steps, runs, size, json, export: Some(path) }) => {
-            let _ = (threads, steps, runs, json);
+        Some(Command::Bench { scene, threads, steps, runs, size, substeps, json, export: Some(path) }) => {
+            let _ = (threads, steps, runs, substeps, json);
             bench::build_scene(&scene, size).and_then(|s| scene_export::export(&s)).and_then(|text| {
                 std::fs::write(&path, text)
                     .map(|()| format!("wrote {}\n", path.display()))
                     .map_err(|e| format!("cannot write {}: {e}", path.display()))
             })
         }
-        Some(Command::Bench { scene, threads, steps, runs, size, json, export: None }) => {
-            bench::bench(&scene, &bench::BenchOptions { threads, steps, runs, size, json })
+        Some(Command::Bench { scene, threads, steps, runs, size, substeps, json, export: None }) => {
+            bench::bench(&scene, &bench::BenchOptions { threads, steps, runs, size, substeps, json })
         }
         Some(Command::Mass { mesh, density }) => mass::print_mass(&mesh, density),
         Some(Command::View { input, out, fps }) => view::view(&input.source(Some(fps)), out),

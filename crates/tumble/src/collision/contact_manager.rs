@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 
 use super::aabb::shape_aabb;
 use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};
+use super::manifold_reuse::{is_flat_sided, ManifoldOrigin};
 use super::narrow_phase::{collide, PairCache};
 use crate::body::{Body, BodyKind};
 use crate::dynamics::contact::Contact;
@@ -187,6 +188,7 @@ impl ContactManager {
                     manifold: None,
                     impulses: [ContactImpulse::default(); 4],
                     cache: PairCache::default(),
+                    manifold_origin: None,
                     material: Material::combine(&a.material, &b.material),
                     sensor: a.is_sensor || b.is_sensor,
                     touching: false,
@@ -316,6 +318,13 @@ fn update_manifold(contact: &mut Contact, a: &Body, b: &Body, dt: f64) {
     let (leaf_a, leaf_b) = (moving(a, leaf_a), moving(b, leaf_b));
     let pose_a = a.transform().mul_transform(&local_a);
     let pose_b = b.transform().mul_transform(&local_b);
+    // A pair that has barely moved since its manifold was made keeps the manifold's points.
+    if let (Some(origin), Some(manifold)) = (&contact.manifold_origin, &contact.manifold) {
+        if origin.still_fits(&pose_a, &pose_b) {
+            contact.manifold = Some(origin.remeasure(manifold, &pose_a, &pose_b));
+            return;
+        }
+    }
     // Contacts within reach of this step's relative motion are made now, so the solver can stop
     // the bodies at the surface (speculative contact).
     let spin = |body: &Body, pose: &Transform, shape: &Shape| {
@@ -327,5 +336,11 @@ fn update_manifold(contact: &mut Contact, a: &Body, b: &Body, dt: f64) {
         * dt;
     let margin = SPECULATIVE_DISTANCE + closing;
     let manifold = collide(leaf_a, &pose_a, leaf_b, &pose_b, margin, &mut contact.cache);
+    contact.manifold_origin = match &manifold {
+        Some(m) if !m.is_empty() && is_flat_sided(leaf_a) && is_flat_sided(leaf_b) => {
+            Some(ManifoldOrigin::new(leaf_a, &pose_a, leaf_b, &pose_b, m))
+        }
+        _ => None,
+    };
     contact.set_manifold(manifold);
 }

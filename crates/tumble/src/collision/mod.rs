@@ -19,6 +19,7 @@ pub mod feature;
 pub mod filter;
 pub mod gjk;
 pub mod manifold;
+pub mod manifold_reuse;
 pub mod mesh_bvh;
 pub mod mesh_contact;
 pub mod narrow_phase;

@@ -3,6 +3,7 @@
 //! feature id, for warm starting) and the narrow phase's cache for the pair.
 
 use crate::collision::manifold::Manifold;
+use crate::collision::manifold_reuse::ManifoldOrigin;
 use crate::collision::narrow_phase::PairCache;
 use crate::collision::ProxyKey;
 use crate::dynamics::contact_solver::{ContactImpulse, ContactMaterial};
@@ -22,6 +23,9 @@ pub(crate) struct Contact {
     /// Impulses of the manifold's points, in the manifold's point order.
     pub impulses: [ContactImpulse; 4],
     pub cache: PairCache,
+    /// Where the manifold was made, while it may be reused (`collision/manifold_reuse.rs`).
+    #[serde(default)]
+    pub manifold_origin: Option<ManifoldOrigin>,
     pub material: ContactMaterial,
     /// One of the shapes is a sensor: overlap is reported, no contact force acts.
     pub sensor: bool,
