@@ -18,30 +18,32 @@
 use crate::math::{DQuat, DVec3};
 
 /// Rotates `rotation` (principal frame → world) and the body-frame momentum `l_principal` by the
-/// exact flow of `Lᵢ²/(2Iᵢ)` about principal axis `axis` (0, 1, 2) for time `h`.
+/// exact flow of `Lᵢ²/(2Iᵢ)` about principal axis `AXIS` (0, 1, 2) for time `h` (given `1/Iᵢ`:
+/// a multiplication where a division would lengthen the chain of dependent operations).
 #[inline]
-fn rotate_about_principal_axis(
+fn rotate_about_principal_axis<const AXIS: usize>(
     rotation: &mut DQuat,
     l_principal: &mut DVec3,
-    inertia_principal: DVec3,
-    axis: usize,
+    inverse_inertia_principal: DVec3,
     h: f64,
 ) {
-    let angle = l_principal[axis] / inertia_principal[axis] * h;
-    let (s, c) = angle.sin_cos();
+    let angle = l_principal[AXIS] * inverse_inertia_principal[AXIS] * h;
+    // One sine and cosine, of the half angle (the quaternion's); the whole angle's follow from
+    // the double-angle formulas.
+    let (hs, hc) = (0.5 * angle).sin_cos();
+    let (s, c) = (2.0 * hs * hc, (hc - hs) * (hc + hs));
     // Body turns by +angle about its own axis; its momentum, seen from the body, turns by −angle.
-    let (i, j) = match axis {
-        0 => (1, 2),
-        1 => (2, 0),
-        _ => (0, 1),
-    };
+    let (i, j) = [(1, 2), (2, 0), (0, 1)][AXIS];
     let (li, lj) = (l_principal[i], l_principal[j]);
     l_principal[i] = c * li + s * lj;
     l_principal[j] = -s * li + c * lj;
-    let (hs, hc) = (0.5 * angle).sin_cos();
-    let mut q_axis = DVec3::ZERO;
-    q_axis[axis] = hs;
-    *rotation *= DQuat::from_xyzw(q_axis.x, q_axis.y, q_axis.z, hc);
+    // `rotation * (hs eₐ, hc)`, written out: half the products of a full quaternion product vanish.
+    let (x, y, z, w) = (rotation.x, rotation.y, rotation.z, rotation.w);
+    *rotation = match AXIS {
+        0 => DQuat::from_xyzw(w * hs + x * hc, y * hc + z * hs, z * hc - y * hs, w * hc - x * hs),
+        1 => DQuat::from_xyzw(x * hc - z * hs, w * hs + y * hc, z * hc + x * hs, w * hc - y * hs),
+        _ => DQuat::from_xyzw(x * hc + y * hs, y * hc - x * hs, w * hs + z * hc, w * hc - z * hs),
+    };
 }
 
 /// Advances a free rigid rotation by `h` with the symmetric splitting. `rotation` maps the principal
@@ -54,13 +56,68 @@ pub fn free_rotation_flow(
     h: f64,
 ) -> (DQuat, DVec3) {
     let (mut q, mut l) = (rotation, l_principal);
+    let inverse_inertia = inertia_principal.recip();
     let half = 0.5 * h;
-    rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 0, half);
-    rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 1, half);
-    rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 2, h);
-    rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 1, half);
-    rotate_about_principal_axis(&mut q, &mut l, inertia_principal, 0, half);
+    rotate_about_principal_axis::<0>(&mut q, &mut l, inverse_inertia, half);
+    rotate_about_principal_axis::<1>(&mut q, &mut l, inverse_inertia, half);
+    rotate_about_principal_axis::<2>(&mut q, &mut l, inverse_inertia, h);
+    rotate_about_principal_axis::<1>(&mut q, &mut l, inverse_inertia, half);
+    rotate_about_principal_axis::<0>(&mut q, &mut l, inverse_inertia, half);
     (q.normalize(), l)
+}
+
+/// `steps` steps of [`free_rotation_flow`] of `h` each, at once: a step's last half rotation about
+/// the first axis and the next step's first are one rotation (the flows of one axis commute), so
+/// `n` steps take `4n + 1` rotations instead of `5n`. The same map up to round-off, for a body on
+/// which nothing acts between the steps.
+pub fn free_rotation_flow_steps(
+    rotation: DQuat,
+    l_principal: DVec3,
+    inertia_principal: DVec3,
+    h: f64,
+    steps: u32,
+) -> (DQuat, DVec3) {
+    let (mut q, mut l) = ([rotation], [l_principal]);
+    free_rotation_flow_steps_lanes(&mut q, &mut l, &[inertia_principal], h, steps);
+    (q[0], l[0])
+}
+
+/// [`free_rotation_flow_steps`] for `N` bodies side by side: each lane's numbers are exactly those
+/// of the body alone, but the lanes' chains of dependent operations (each rotation needs the last
+/// one's momentum) are independent, so the processor overlaps them.
+pub fn free_rotation_flow_steps_lanes<const N: usize>(
+    rotations: &mut [DQuat; N],
+    l_principal: &mut [DVec3; N],
+    inertia_principal: &[DVec3; N],
+    h: f64,
+    steps: u32,
+) {
+    if steps == 0 {
+        return;
+    }
+    let inverse_inertia = inertia_principal.map(DVec3::recip);
+    let rotate = |axis: usize, q: &mut [DQuat; N], l: &mut [DVec3; N], h: f64| {
+        for lane in 0..N {
+            let (q, l, inverse) = (&mut q[lane], &mut l[lane], inverse_inertia[lane]);
+            match axis {
+                0 => rotate_about_principal_axis::<0>(q, l, inverse, h),
+                1 => rotate_about_principal_axis::<1>(q, l, inverse, h),
+                _ => rotate_about_principal_axis::<2>(q, l, inverse, h),
+            }
+        }
+    };
+    let half = 0.5 * h;
+    rotate(0, rotations, l_principal, half);
+    for step in 1..=steps {
+        rotate(1, rotations, l_principal, half);
+        rotate(2, rotations, l_principal, h);
+        rotate(1, rotations, l_principal, half);
+        let last = if step == steps { half } else { h };
+        rotate(0, rotations, l_principal, last);
+    }
+    for q in rotations.iter_mut() {
+        *q = q.normalize();
+    }
 }
 
 /// `free_rotation_flow` for a world-frame momentum `l_world`; returns the new rotation.
@@ -107,6 +164,30 @@ mod tests {
     }
 
     #[test]
+    fn steps_at_once_match_steps_one_by_one() {
+        // An asymmetric body tumbling about no principal axis, 8 steps: the merged rotations give
+        // the same map to round-off.
+        let inertia = DVec3::new(0.3, 1.1, 1.7);
+        let (q0, l0) = (DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -1.2, 2.0), DVec3::new(0.9, -0.4, 1.3));
+        let h = 1.0 / 480.0;
+        let (mut q, mut l) = (q0, l0);
+        for _ in 0..8 {
+            (q, l) = free_rotation_flow(q, l, inertia, h);
+        }
+        let (q8, l8) = free_rotation_flow_steps(q0, l0, inertia, h, 8);
+        assert!(q.dot(q8).abs() > 1.0 - 1e-15, "{q:?} vs {q8:?}");
+        assert!((l - l8).length() < 1e-14 * l0.length(), "{l:?} vs {l8:?}");
+        // And it moved: not the identity map.
+        assert!((l8 - l0).length() > 1e-3);
+        assert_eq!(free_rotation_flow_steps(q0, l0, inertia, h, 0), (q0, l0));
+        // Side by side with other bodies, a body's numbers are its own, bit for bit.
+        let (mut qs, mut ls) = ([DQuat::IDENTITY, q0, DQuat::from_rotation_z(1.0)], [l0 * 3.0, l0, -l0]);
+        let inertias = [DVec3::ONE, inertia, inertia * 2.0];
+        free_rotation_flow_steps_lanes(&mut qs, &mut ls, &inertias, h, 8);
+        assert_eq!((qs[1], ls[1]), (q8, l8));
+    }
+
+    #[test]
     fn world_momentum_is_unchanged_by_one_step() {
         let inertia = DVec3::new(1.0, 2.0, 3.0);
         let q0 = DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -1.1, 0.7);
@@ -116,9 +197,12 @@ mod tests {
         // reconstruct it from the flow and compare.
         let mut q = q0;
         let mut l = q0.inverse() * l_world;
-        for (axis, h) in [(0, 0.025), (1, 0.025), (2, 0.05), (1, 0.025), (0, 0.025)] {
-            rotate_about_principal_axis(&mut q, &mut l, inertia, axis, h);
-        }
+        let inverse = inertia.recip();
+        rotate_about_principal_axis::<0>(&mut q, &mut l, inverse, 0.025);
+        rotate_about_principal_axis::<1>(&mut q, &mut l, inverse, 0.025);
+        rotate_about_principal_axis::<2>(&mut q, &mut l, inverse, 0.05);
+        rotate_about_principal_axis::<1>(&mut q, &mut l, inverse, 0.025);
+        rotate_about_principal_axis::<0>(&mut q, &mut l, inverse, 0.025);
         assert!((q * l - l_world).length() < 1e-14);
         assert!(q1.dot(q.normalize()).abs() > 1.0 - 1e-15);
     }

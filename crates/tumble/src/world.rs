@@ -76,6 +76,9 @@ pub struct World {
     /// The solver's contact rows, kept between steps to reuse the allocation.
     #[serde(skip)]
     pub(crate) contact_constraints: Vec<ContactConstraint>,
+    /// The solver's constrained and unconstrained bodies, kept to reuse the allocation.
+    #[serde(skip)]
+    pub(crate) body_partition: crate::dynamics::solver::BodyPartition,
     /// The step's joint trees (`dynamics/joint_tree/`), kept to reuse their allocations.
     #[serde(skip)]
     pub(crate) joint_trees: crate::dynamics::joint_tree::JointTrees,
@@ -169,6 +172,7 @@ impl World {
             solver_bodies: Vec::new(),
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
+            body_partition: Default::default(),
             joint_trees: Default::default(),
             contact_colouring: Default::default(),
             gravity: check_vec("gravity", def.gravity)?,

@@ -250,17 +250,25 @@ impl World {
             });
         }
         let has_joints = self.joints.iter().any(|(_, joint)| joint.solving);
+        let mut partition = std::mem::take(&mut self.body_partition);
+        partition.split(&bodies, &contacts, &self.joints);
 
         // The substeps, on every thread of the pool at once (solver_threads.rs) — where some stage
         // is split between them: waiting at barriers for stages that are not (a chain of joints)
         // only costs. The result is the same either way.
-        let worth_threads =
-            colouring.stages().iter().any(|&(_, split)| split) || bodies.len() >= PARALLEL_MIN_BODIES;
+        let worth_threads = colouring.stages().iter().any(|&(_, split)| split)
+            || partition.constrained.len() >= PARALLEL_MIN_BODIES
+            || partition.unconstrained.len() >= PARALLEL_MIN_BODIES;
         let pool = self.pool.as_deref().filter(|_| worth_threads);
         let mut serial = (&mut self.joints, &mut trees);
-        let data = SolveData::new(&mut bodies, &mut contacts, &colouring, &mut serial);
+        let lists = (&partition.constrained[..], &partition.unconstrained[..]);
+        let data = SolveData::new(&mut bodies, lists, &mut contacts, &colouring, &mut serial);
         let ctx = &ctx;
         run_on_threads(pool, |thread| {
+            // A body no constraint acts on goes through all its substeps at once.
+            data.unconstrained_bodies(thread, |bodies| {
+                SolverBody::integrate_unconstrained(bodies, ctx.gravity, ctx.h, ctx.substeps)
+            });
             let joint_stage = |f: &dyn Fn(&mut Joint, &mut SolverBody, &mut SolverBody)| {
                 if has_joints {
                     data.serial(thread, |(joints, _), bodies| for_each_joint(joints, bodies, f));
@@ -305,6 +313,7 @@ impl World {
         }
         self.contact_colouring = colouring;
         self.contact_constraints = contacts;
+        self.body_partition = partition;
         self.joint_trees = trees;
 
         // Store: constraint forces and joint breaking, then write the bodies back.
@@ -319,6 +328,39 @@ impl World {
             }
         }
         self.solver_bodies = bodies;
+    }
+}
+
+/// The moving bodies of a step, split by whether any constraint acts on them: the substeps'
+/// body stages run over the constrained ones; each unconstrained one takes all its substeps at once
+/// (fewer passes over memory; the same numbers).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct BodyPartition {
+    pub constrained: Vec<u32>,
+    pub unconstrained: Vec<u32>,
+    acted_on: Vec<bool>,
+}
+
+impl BodyPartition {
+    /// Splits the moving (dynamic or kinematic) bodies by whether a contact row or a solved joint
+    /// acts on them; each list in slot order.
+    fn split(&mut self, bodies: &[SolverBody], contacts: &[ContactConstraint], joints: &SlotPool<Joint>) {
+        self.acted_on.clear();
+        self.acted_on.resize(bodies.len(), false);
+        for contact in contacts {
+            self.acted_on[contact.body_a] = true;
+            self.acted_on[contact.body_b] = true;
+        }
+        for (_, joint) in joints.iter().filter(|(_, joint)| joint.solving) {
+            self.acted_on[joint.body_a.index()] = true;
+            self.acted_on[joint.body_b.index()] = true;
+        }
+        self.constrained.clear();
+        self.unconstrained.clear();
+        for (slot, _) in bodies.iter().enumerate().filter(|(_, body)| body.moves()) {
+            let list = if self.acted_on[slot] { &mut self.constrained } else { &mut self.unconstrained };
+            list.push(slot as u32);
+        }
     }
 }
 

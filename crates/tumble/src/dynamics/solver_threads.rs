@@ -120,6 +120,10 @@ impl<'a> SolverThread<'a> {
 /// everything; that is what makes the accesses below sound.
 pub(crate) struct SolveData<'a, S> {
     bodies: Shared<'a, SolverBody>,
+    /// The bodies some constraint acts on (strictly increasing slots): the body stages' work.
+    constrained: &'a [u32],
+    /// The moving bodies no constraint acts on (strictly increasing slots).
+    unconstrained: &'a [u32],
     contacts: Shared<'a, ContactConstraint>,
     colouring: &'a ContactColouring,
     /// The state the stages that are not split work on (joints, joint trees).
@@ -127,25 +131,61 @@ pub(crate) struct SolveData<'a, S> {
 }
 
 impl<'a, S: Send> SolveData<'a, S> {
-    /// `contacts` must be in the order `colouring` sorted them into.
+    /// `contacts` must be in the order `colouring` sorted them into; `constrained` and
+    /// `unconstrained` list body slots, each strictly increasing (so no slot twice).
     pub fn new(
         bodies: &'a mut [SolverBody],
+        (constrained, unconstrained): (&'a [u32], &'a [u32]),
         contacts: &'a mut [ContactConstraint],
         colouring: &'a ContactColouring,
         serial: &'a mut S,
     ) -> Self {
+        for list in [constrained, unconstrained] {
+            assert!(list.windows(2).all(|w| w[0] < w[1]), "body lists must be strictly increasing");
+            assert!(list.last().is_none_or(|&i| (i as usize) < bodies.len()), "body slot out of range");
+        }
         SolveData {
             bodies: Shared::new(bodies),
+            constrained,
+            unconstrained,
             contacts: Shared::new(contacts),
             colouring,
             serial: Shared::new(std::slice::from_mut(serial)),
         }
     }
 
-    /// `f` on every body, each thread its share.
+    /// `f` on every constrained body, each thread its share.
     pub fn bodies(&self, thread: SolverThread, f: impl Fn(&mut SolverBody)) {
-        // SAFETY: this thread's share, until the barrier.
-        unsafe { self.bodies.slice(thread.share(0..self.bodies.len)) }.iter_mut().for_each(f);
+        self.each_body(thread, self.constrained, f);
+    }
+
+    /// `f` on the unconstrained bodies in groups of up to `N` (in slot order; the last group's
+    /// missing bodies are `None`), each thread its share.
+    pub fn unconstrained_bodies<const N: usize>(
+        &self,
+        thread: SolverThread,
+        f: impl Fn(&mut [Option<&mut SolverBody>; N]),
+    ) {
+        let slots = self.unconstrained;
+        for group in slots[thread.share(0..slots.len())].chunks(N) {
+            let mut bodies = std::array::from_fn(|k| {
+                // SAFETY: the slots are distinct (checked in `new`) and in range, and this
+                // thread's share of them is its own until the barrier.
+                group
+                    .get(k)
+                    .map(|&slot| unsafe { &mut self.bodies.slice(slot as usize..slot as usize + 1)[0] })
+            });
+            f(&mut bodies);
+        }
+        thread.sync();
+    }
+
+    fn each_body(&self, thread: SolverThread, slots: &[u32], f: impl Fn(&mut SolverBody)) {
+        for &slot in &slots[thread.share(0..slots.len())] {
+            // SAFETY: the slots are distinct (checked in `new`) and in range, and this thread's
+            // share of them is its own until the barrier.
+            f(unsafe { &mut self.bodies.slice(slot as usize..slot as usize + 1)[0] });
+        }
         thread.sync();
     }
 
