@@ -22,9 +22,12 @@ impl World {
         let start = Instant::now();
         let mut clock = start;
 
-        // Broad phase: move proxies, find new pairs; narrow phase: update manifolds
-        // (collision/contact_manager.rs).
-        self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
+        // Broad phase: move proxies (unless the last step's finalize left them in place for this
+        // step length and no body has changed since), find new pairs; narrow phase: update
+        // manifolds (collision/contact_manager.rs).
+        if self.proxies_in_place_for != Some(dt) {
+            self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
+        }
         self.profile.lap(Phase::Proxies, &mut clock);
         let joints = &self.joints;
         let joined = |a: BodyId, b: BodyId| {
@@ -60,6 +63,7 @@ impl World {
         // Move the proxies of the bodies that moved, so queries between steps see the current
         // poses (query.rs); the next step's broad phase then finds them already in place.
         self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
+        self.proxies_in_place_for = Some(dt);
         self.profile.lap(Phase::Finalize, &mut clock);
 
         // Islands and sleep (dynamics/island.rs), over the links found before the solve.

@@ -76,6 +76,12 @@ pub struct World {
     /// The solver's contact rows, kept between steps to reuse the allocation.
     #[serde(skip)]
     pub(crate) contact_constraints: Vec<ContactConstraint>,
+    /// The step length for which the last step's finalize stage moved every moving body's
+    /// proxies to its pose and velocity, if no body has changed since: a next step of the same
+    /// length need not move them again. Any change through `body_mut` clears it; a loaded world
+    /// starts without.
+    #[serde(skip)]
+    pub(crate) proxies_in_place_for: Option<f64>,
     /// The solver's constrained and unconstrained bodies, kept to reuse the allocation.
     #[serde(skip)]
     pub(crate) body_partition: crate::dynamics::solver::BodyPartition,
@@ -172,6 +178,7 @@ impl World {
             solver_bodies: Vec::new(),
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
+            proxies_in_place_for: None,
             body_partition: Default::default(),
             joint_trees: Default::default(),
             contact_colouring: Default::default(),
@@ -524,6 +531,7 @@ impl World {
     }
 
     pub(crate) fn body_mut(&mut self, id: BodyId) -> Result<&mut Body, WorldError> {
+        self.proxies_in_place_for = None;
         self.bodies.get_mut(id.into()).ok_or(WorldError::StaleBody(id))
     }
 

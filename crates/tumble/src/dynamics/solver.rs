@@ -183,15 +183,14 @@ impl World {
 
         // Gather: the solver's working copy of every body, indexed by slot.
         let mut bodies = std::mem::take(&mut self.solver_bodies);
+        // Sleeping bodies stand still: they take part as fixed bodies, if at all. Isolated bodies
+        // (non_finite.rs) have no contacts and broken joints: they take no part. (Each slot is
+        // written once: these are hundreds of bytes a body.)
         bodies.clear();
-        bodies.resize(self.bodies.capacity_index(), SolverBody::FIXED);
-        for (id, body) in self.bodies.iter() {
-            // Sleeping bodies stand still: they take part as fixed bodies, if at all. Isolated
-            // bodies (non_finite.rs) have no contacts and broken joints: they take no part.
-            if body.is_awake() && !body.isolated {
-                bodies[id.index()] = SolverBody::from_body(body);
-            }
-        }
+        bodies.extend((0..self.bodies.capacity_index()).map(|slot| match self.bodies.iter_slot(slot) {
+            Some(body) if body.is_awake() && !body.isolated => SolverBody::from_body(body),
+            _ => SolverBody::FIXED,
+        }));
 
         // Prepare joints.
         for (_, joint) in self.joints.iter_mut() {
