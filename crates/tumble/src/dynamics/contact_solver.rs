@@ -397,7 +397,9 @@ impl ContactConstraint {
     pub fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext, use_bias: bool) {
         let radii = self.radii;
         let n = self.normal;
-        let total_normal = self.solve_normals(a, b, ctx, use_bias);
+        let Some(total_normal) = self.solve_normals(a, b, ctx, use_bias) else {
+            return;
+        };
 
         let mut normal_impulses = [0.0; MAX_POINTS];
         for (l, pc) in normal_impulses.iter_mut().zip(&self.points[..self.point_count]) {
@@ -450,14 +452,15 @@ impl ContactConstraint {
     }
 
     /// The normal rows of the manifold, solved together (contact_block.rs; one by one if the block
-    /// cannot be factored). Returns the manifold's total normal impulse.
+    /// cannot be factored). Returns the manifold's total normal impulse, or `None` when the whole
+    /// manifold is idle (see `is_idle`): every row's update would be zero, and nothing is done.
     fn solve_normals(
         &mut self,
         a: &mut SolverBody,
         b: &mut SolverBody,
         ctx: &StepContext,
         use_bias: bool,
-    ) -> f64 {
+    ) -> Option<f64> {
         let radii = self.radii;
         let n = self.normal;
         let count = self.point_count;
@@ -474,6 +477,9 @@ impl ContactConstraint {
             let material = pc.anchors(radii, n, a, b);
             separations[i] = pc.separation(material, a, b, n);
             anchors[i] = shared_levers(material, self.com_offset, a, b);
+        }
+        if self.is_idle(&anchors[..count], &separations[..count], a, b, ctx) {
+            return None;
         }
         // `K` of the levers the impulses act at now. The step-start `K` no longer matches them once
         // a body has turned within the step, and a row whose `K` is too small by a factor `f`
@@ -535,7 +541,34 @@ impl ContactConstraint {
             impulses[i] = applied * n;
         }
         apply_point_impulses(a, b, &anchors[..count], &impulses[..count]);
-        total_normal
+        Some(total_normal)
+    }
+
+    /// Whether a pass over this manifold would change nothing: every point is speculative (apart
+    /// by more than the soft band) and not closing its gap within the substep, `vₙ + s/h ≥ 0`, and
+    /// no impulse has been accumulated — no normal, friction, twist, torsional or rolling impulse.
+    /// Then every normal row's right-hand side is ≤ 0 with nothing to release, so the block's
+    /// answer is zero (its matrix is positive definite), and friction bounded by a zero load has
+    /// nothing to take back. The gaps between the boxes of a pile, and spheres about to land, are
+    /// mostly such manifolds.
+    fn is_idle(
+        &self,
+        anchors: &[(DVec3, DVec3)],
+        separations: &[f64],
+        a: &SolverBody,
+        b: &SolverBody,
+        ctx: &StepContext,
+    ) -> bool {
+        let n = self.normal;
+        let no_friction = self.friction.tangent_impulse == DVec3::ZERO
+            && self.friction.twist_impulse == 0.0
+            && self.torsional_impulse == 0.0
+            && self.rolling_impulse == DVec3::ZERO;
+        no_friction
+            && self.points.iter().zip(anchors).zip(separations).all(|((pc, &(r_a, r_b)), &s)| {
+                let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
+                s > SOFT_BAND && pc.normal_impulse == 0.0 && vn + s * ctx.inv_h >= 0.0
+            })
     }
 
     /// End of a substep: the steady load learns from this substep's normal impulse, with a time
