@@ -378,6 +378,9 @@ impl ContactConstraint {
 
     /// Stage "warm start": apply the accumulated impulses again.
     pub fn warm_start(&self, a: &mut SolverBody, b: &mut SolverBody) {
+        if !self.has_impulse() {
+            return;
+        }
         let radii = self.radii;
         let count = self.point_count;
         let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
@@ -560,15 +563,20 @@ impl ContactConstraint {
         ctx: &StepContext,
     ) -> bool {
         let n = self.normal;
-        let no_friction = self.friction.tangent_impulse == DVec3::ZERO
-            && self.friction.twist_impulse == 0.0
-            && self.torsional_impulse == 0.0
-            && self.rolling_impulse == DVec3::ZERO;
-        no_friction
-            && self.points.iter().zip(anchors).zip(separations).all(|((pc, &(r_a, r_b)), &s)| {
+        !self.has_impulse()
+            && anchors.iter().zip(separations).all(|(&(r_a, r_b), &s)| {
                 let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
-                s > SOFT_BAND && pc.normal_impulse == 0.0 && vn + s * ctx.inv_h >= 0.0
+                s > SOFT_BAND && vn + s * ctx.inv_h >= 0.0
             })
+    }
+
+    /// Whether any impulse is accumulated: normal, friction, twist, torsional or rolling.
+    fn has_impulse(&self) -> bool {
+        self.points[..self.point_count].iter().any(|pc| pc.normal_impulse != 0.0)
+            || self.friction.tangent_impulse != DVec3::ZERO
+            || self.friction.twist_impulse != 0.0
+            || self.torsional_impulse != 0.0
+            || self.rolling_impulse != DVec3::ZERO
     }
 
     /// End of a substep: the steady load learns from this substep's normal impulse, with a time
