@@ -257,6 +257,8 @@ pub(crate) struct ContactConstraint {
     friction: PatchFriction,
     rolling_impulse: DVec3,
     torsional_impulse: f64,
+    /// The normal rows' `K` at the step start, used while both bodies are still (see `solve`).
+    coupling_start: [[f64; MAX_POINTS]; MAX_POINTS],
 }
 
 /// Applies the impulses `pᵢ` at levers `(r_aᵢ, r_bᵢ)` (`−pᵢ` to a, `+pᵢ` to b) at once: one
@@ -299,6 +301,7 @@ impl ContactConstraint {
         friction: PatchFriction::EMPTY,
         rolling_impulse: DVec3::ZERO,
         torsional_impulse: 0.0,
+        coupling_start: [[0.0; MAX_POINTS]; MAX_POINTS],
     };
 
     /// Stage "prepare" for one manifold. `com_a`, `com_b` are the centres of mass at the step
@@ -328,6 +331,7 @@ impl ContactConstraint {
             friction: PatchFriction::EMPTY,
             rolling_impulse: DVec3::ZERO,
             torsional_impulse: 0.0,
+            coupling_start: [[0.0; MAX_POINTS]; MAX_POINTS],
         };
         for (pc, input) in constraint.points.iter_mut().zip(points) {
             // The narrow phase's point is midway between the surfaces; each body's anchor is its
@@ -341,12 +345,13 @@ impl ContactConstraint {
             let r_a = input.point_world - 0.5 * input.separation * normal - com_a;
             let r_b = input.point_world + 0.5 * input.separation * normal - com_b;
             let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
+            let (r_a_local, r_b_local) = round_locals((r_a, r_b), radii, normal, a, b);
             *pc = PointConstraint {
                 softness,
                 r_a0: r_a,
                 r_b0: r_b,
-                r_a_local: round_locals((r_a, r_b), radii, normal, a, b).0,
-                r_b_local: round_locals((r_a, r_b), radii, normal, a, b).1,
+                r_a_local,
+                r_b_local,
                 base_separation: input.separation,
                 normal_impulse: if ctx.warm_starting { input.impulse.normal } else { 0.0 },
                 steady_normal_impulse: if ctx.warm_starting { input.impulse.steady_normal } else { 0.0 },
@@ -358,9 +363,12 @@ impl ContactConstraint {
         }
         let count = constraint.point_count;
         let mut offsets = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
-        for (offset, pc) in offsets.iter_mut().zip(&constraint.points[..count]) {
+        let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+        for ((offset, lever), pc) in offsets.iter_mut().zip(&mut levers).zip(&constraint.points[..count]) {
             *offset = (pc.r_a0, pc.r_b0);
+            *lever = shared_levers(*offset, constraint.com_offset, a, b);
         }
+        constraint.coupling_start = normal_coupling(&levers[..count], normal, a, b);
         let (tangent, twist) = if ctx.warm_starting {
             points
                 .iter()
@@ -489,7 +497,15 @@ impl ContactConstraint {
         // overshoots its target by `f`: beyond `f = 2` every such impulse adds energy. A stick
         // spinning at 300 rad/s turns 1.25 rad per substep, its corner's `K` changes by up to
         // 4×, and the phantom levers of far speculative points (see `prepare`) by 60×.
-        let coupling = normal_coupling(&anchors[..count], n, a, b);
+        // While both bodies are still (solver_body.rs: moved under 1 mm, turned under 1 mrad since
+        // the step began), the levers have changed by at most that — `K` by a thousandth for
+        // levers of a metre, a few percent for a centimetre-sized body, far below the factor 2
+        // that matters — and the step-start `K` serves.
+        let coupling = if a.still && b.still {
+            self.coupling_start
+        } else {
+            normal_coupling(&anchors[..count], n, a, b)
+        };
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let s = separations[i];
             let (r_a, r_b) = anchors[i];

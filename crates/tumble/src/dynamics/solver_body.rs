@@ -27,6 +27,12 @@ pub(crate) struct SolverBody {
     /// points with it several times a substep, and a matrix does that in half the operations.
     pub rotation: DMat3,
     kind: BodyKind,
+    /// The body has moved less than [`STILL_DISTANCE`] and turned less than [`STILL_TURN`] since
+    /// the step began: its contacts' effective masses from the step start still hold (the levers
+    /// they were built from have moved by at most that).
+    pub still: bool,
+    /// `q` at the start of the step.
+    q_start: DQuat,
     /// All three principal moments are equal (a sphere, a cube): every axis is principal, the
     /// free flow is a rotation about `ω` at constant `ω`, and the world inertia never changes.
     isotropic: bool,
@@ -50,6 +56,8 @@ impl SolverBody {
         inv_inertia: DMat3::ZERO,
         rotation: DMat3::IDENTITY,
         kind: BodyKind::Static,
+        still: true,
+        q_start: DQuat::IDENTITY,
         isotropic: true,
         inertia_principal: DVec3::ONE,
         principal_rotation_local: DQuat::IDENTITY,
@@ -70,6 +78,8 @@ impl SolverBody {
             inv_inertia: body.inverse_inertia_world(),
             rotation: DMat3::from_quat(body.state.rotation),
             kind: body.kind,
+            still: true,
+            q_start: body.state.rotation,
             isotropic: body.inertia_principal.x == body.inertia_principal.y
                 && body.inertia_principal.y == body.inertia_principal.z,
             inertia_principal: body.inertia_principal,
@@ -129,10 +139,14 @@ impl SolverBody {
         Some((1.0 / self.inv_mass, r * DMat3::from_diagonal(self.inertia_principal) * r.transpose()))
     }
 
-    /// Sets `q` and the `rotation` matrix that goes with it.
+    /// Sets `q` and the `rotation` matrix that goes with it, and whether the body is still
+    /// (called after `dp` has moved).
     fn set_orientation(&mut self, q: DQuat) {
         self.q = q;
         self.rotation = DMat3::from_quat(q);
+        // |q·q_start| = cos(θ/2) of the turn since the step began.
+        self.still = self.dp.length_squared() < STILL_DISTANCE * STILL_DISTANCE
+            && q.dot(self.q_start).abs() > (0.5 * STILL_TURN).cos();
     }
 
     fn refresh_inverse_inertia(&mut self) {
@@ -238,6 +252,11 @@ impl SolverBody {
         }
     }
 }
+
+/// How far a body may move within a step, m, and turn, rad, and still count as still: a lever of
+/// length `r` then changes by at most 1 mm + r·10⁻³.
+pub(crate) const STILL_DISTANCE: f64 = 1e-3;
+pub(crate) const STILL_TURN: f64 = 1e-3;
 
 /// How many unconstrained bodies integrate side by side.
 pub(crate) const FREE_FLOW_LANES: usize = 4;
