@@ -328,6 +328,8 @@ impl World {
         let id = self.bodies.insert(body);
         let body = self.bodies.get_mut(id).expect("just inserted");
         self.contact_manager.add_body(id.index(), body);
+        // Its proxies are not yet stretched by its velocity: the next step moves them.
+        self.proxies_in_place_for = None;
         Ok(id.into())
     }
 

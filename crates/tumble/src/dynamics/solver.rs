@@ -331,8 +331,8 @@ impl World {
 }
 
 /// The moving bodies of a step, split by whether any constraint acts on them: the substeps'
-/// body stages run over the constrained ones; each unconstrained one takes all its substeps at once
-/// (fewer passes over memory; the same numbers).
+/// body stages run over the constrained ones; the unconstrained ones take all their substeps at
+/// once (`SolverBody::integrate_unconstrained`).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct BodyPartition {
     pub constrained: Vec<u32>,
