@@ -107,15 +107,18 @@ impl DynamicTree {
     }
 
     /// Updates a proxy to the tight box `aabb`, expected to move by `displacement` before the next
-    /// update. Re-inserts it, with a new fat box swept by `displacement`, only when `aabb` left the
-    /// old fat box — or when the old fat box has become far larger than needed (a body that moved
-    /// fast and then stopped). Returns whether the proxy was re-inserted.
+    /// update. Re-inserts it only when the old fat box no longer covers `aabb` swept by
+    /// `displacement` — where the body is and where it is headed, so the pairs it will meet are
+    /// found before it gets there (a body that was given a speed, or made, right next to a thin
+    /// wall) — or when the old fat box has become far larger than needed (a body that moved fast
+    /// and then stopped). The new fat box is swept by twice the displacement, so a body moving
+    /// steadily is re-inserted every other update. Returns whether the proxy was re-inserted.
     pub fn move_proxy(&mut self, id: ProxyId, aabb: Aabb, displacement: DVec3) -> bool {
         self.check_leaf(id);
         debug_assert!(aabb.is_valid(), "move_proxy: invalid box {aabb:?}");
-        let fat = aabb.fattened(self.margin).swept(displacement);
+        let fat = aabb.fattened(self.margin).swept(2.0 * displacement);
         let old = self.nodes[id.0 as usize].aabb;
-        if old.contains(&aabb) {
+        if old.contains(&aabb.swept(displacement)) {
             let huge = fat.fattened(4.0 * self.margin);
             if huge.contains(&old) {
                 return false;
