@@ -187,10 +187,19 @@ impl World {
         // (non_finite.rs) have no contacts and broken joints: they take no part. (Each slot is
         // written once: these are hundreds of bytes a body.)
         bodies.clear();
-        bodies.extend((0..self.bodies.capacity_index()).map(|slot| match self.bodies.iter_slot(slot) {
+        let world_bodies = &self.bodies;
+        let gather = |slot: usize| match world_bodies.iter_slot(slot) {
             Some(body) if body.is_awake() && !body.isolated => SolverBody::from_body(body),
             _ => SolverBody::FIXED,
-        }));
+        };
+        let slots = 0..world_bodies.capacity_index();
+        match self.pool.as_deref().filter(|_| slots.len() >= PARALLEL_MIN_BODIES) {
+            Some(pool) => {
+                use rayon::prelude::*;
+                pool.install(|| bodies.par_extend(slots.into_par_iter().map(gather)));
+            }
+            None => bodies.extend(slots.map(gather)),
+        }
 
         // Prepare joints.
         for (_, joint) in self.joints.iter_mut() {
