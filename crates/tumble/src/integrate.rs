@@ -55,15 +55,7 @@ pub fn free_rotation_flow(
     inertia_principal: DVec3,
     h: f64,
 ) -> (DQuat, DVec3) {
-    let (mut q, mut l) = (rotation, l_principal);
-    let inverse_inertia = inertia_principal.recip();
-    let half = 0.5 * h;
-    rotate_about_principal_axis::<0>(&mut q, &mut l, inverse_inertia, half);
-    rotate_about_principal_axis::<1>(&mut q, &mut l, inverse_inertia, half);
-    rotate_about_principal_axis::<2>(&mut q, &mut l, inverse_inertia, h);
-    rotate_about_principal_axis::<1>(&mut q, &mut l, inverse_inertia, half);
-    rotate_about_principal_axis::<0>(&mut q, &mut l, inverse_inertia, half);
-    (q.normalize(), l)
+    free_rotation_flow_steps(rotation, l_principal, inertia_principal, h, 1)
 }
 
 /// `steps` steps of [`free_rotation_flow`] of `h` each, at once: a step's last half rotation about

@@ -160,12 +160,18 @@ impl SolverBody {
         if self.kind != BodyKind::Dynamic {
             return;
         }
-        self.v += h * (gravity * self.gravity_scale + self.force * self.inv_mass);
-        self.v /= 1.0 + h * self.linear_damping;
+        self.integrate_linear_velocity(gravity, h);
         if self.torque != DVec3::ZERO {
             self.w += self.inv_inertia * (0.5 * h * self.torque);
         }
         self.w /= 1.0 + h * self.angular_damping;
+    }
+
+    /// Gravity and applied force, then linear damping (implicit).
+    #[inline]
+    fn integrate_linear_velocity(&mut self, gravity: DVec3, h: f64) {
+        self.v += h * (gravity * self.gravity_scale + self.force * self.inv_mass);
+        self.v /= 1.0 + h * self.linear_damping;
     }
 
     /// Stage "integrate positions": `x += h v`, and the rotation by the exact free-rigid-body flow
@@ -231,8 +237,7 @@ impl SolverBody {
                 continue;
             }
             for _ in 0..substeps {
-                body.v += h * (gravity * body.gravity_scale + body.force * body.inv_mass);
-                body.v /= 1.0 + h * body.linear_damping;
+                body.integrate_linear_velocity(gravity, h);
                 body.dp += h * body.v;
             }
             let q_principal = body.q * body.principal_rotation_local;
