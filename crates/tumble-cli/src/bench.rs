@@ -16,6 +16,8 @@ pub struct BenchOptions {
     pub size: Option<usize>,
     /// Overrides the scene's solver substeps.
     pub substeps: Option<u32>,
+    /// Overrides of other solver settings, `key=value` (`SolverSettings` field names).
+    pub solver: Vec<String>,
     pub json: bool,
 }
 
@@ -27,7 +29,36 @@ fn build_with_options(name: &str, options: &BenchOptions) -> Result<Scene, Strin
         let settings = tumble::SolverSettings { substeps, ..scene.world.solver_settings().clone() };
         scene.world.set_solver_settings(settings).map_err(|e| e.to_string())?;
     }
+    if !options.solver.is_empty() {
+        let settings = with_overrides(scene.world.solver_settings(), &options.solver)?;
+        scene.world.set_solver_settings(settings).map_err(|e| e.to_string())?;
+    }
     Ok(scene)
+}
+
+/// `settings` with each `key=value` of `overrides` applied: the key is a field of
+/// `SolverSettings`, the value JSON (a number or `true`/`false`).
+fn with_overrides(
+    settings: &tumble::SolverSettings,
+    overrides: &[String],
+) -> Result<tumble::SolverSettings, String> {
+    let mut value = serde_json::to_value(settings).map_err(|e| e.to_string())?;
+    let fields = value.as_object_mut().ok_or("solver settings are not a JSON object")?;
+    for item in overrides {
+        let (key, text) =
+            item.split_once('=').ok_or_else(|| format!("--solver {item}: expected KEY=VALUE"))?;
+        if !fields.contains_key(key) {
+            let known: Vec<&str> = fields.keys().map(String::as_str).collect();
+            return Err(format!(
+                "--solver {item}: no solver setting \"{key}\"; the settings are: {}",
+                known.join(", ")
+            ));
+        }
+        let parsed: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| format!("--solver {item}: bad value: {e}"))?;
+        fields.insert(key.to_string(), parsed);
+    }
+    serde_json::from_value(value).map_err(|e| format!("--solver: {e}"))
 }
 
 /// Builds a scene by name, or says which names there are.

@@ -113,6 +113,10 @@ enum Command {
         /// Solver substeps per step [default: the scene's own, the engine default 8].
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
         substeps: Option<u32>,
+        /// Another solver setting, KEY=VALUE (a `SolverSettings` field, e.g. contact_hertz=30);
+        /// may be given several times.
+        #[arg(long, value_name = "KEY=VALUE")]
+        solver: Vec<String>,
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
@@ -222,6 +226,7 @@ fn main() -> ExitCode {
                             runs: 1,
                             size: None,
                             substeps: None,
+                            solver: Vec::new(),
                             json: false,
                         };
                         bench::profile(&name, &options)
@@ -234,16 +239,26 @@ fn main() -> ExitCode {
                 (None, None) => Err("give a scene to run, or --resume CHECKPOINT".into()),
             }
         }
-        Some(Command::Bench { scene, threads, steps, runs, size, substeps, json, export: Some(path) }) => {
-            let _ = (threads, steps, runs, substeps, json);
+        Some(Command::Bench {
+            scene,
+            threads,
+            steps,
+            runs,
+            size,
+            substeps,
+            solver,
+            json,
+            export: Some(path),
+        }) => {
+            let _ = (threads, steps, runs, substeps, solver, json);
             bench::build_scene(&scene, size).and_then(|s| scene_export::export(&s)).and_then(|text| {
                 std::fs::write(&path, text)
                     .map(|()| format!("wrote {}\n", path.display()))
                     .map_err(|e| format!("cannot write {}: {e}", path.display()))
             })
         }
-        Some(Command::Bench { scene, threads, steps, runs, size, substeps, json, export: None }) => {
-            bench::bench(&scene, &bench::BenchOptions { threads, steps, runs, size, substeps, json })
+        Some(Command::Bench { scene, threads, steps, runs, size, substeps, solver, json, export: None }) => {
+            bench::bench(&scene, &bench::BenchOptions { threads, steps, runs, size, substeps, solver, json })
         }
         Some(Command::Mass { mesh, density }) => mass::print_mass(&mesh, density),
         Some(Command::View { input, out, fps }) => view::view(&input.source(Some(fps)), out),

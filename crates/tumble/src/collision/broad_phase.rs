@@ -86,6 +86,11 @@ impl BroadPhase {
         Self { trees: [DynamicTree::new(margin), DynamicTree::new(margin)], move_buffer: Vec::new() }
     }
 
+    /// The fat-box margin, m.
+    pub fn margin(&self) -> f64 {
+        self.trees[0].margin()
+    }
+
     /// The tree holding proxies of `kind` (for queries and diagnostics).
     pub fn tree(&self, kind: ProxyKind) -> &DynamicTree {
         &self.trees[kind as usize]

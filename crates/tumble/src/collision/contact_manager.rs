@@ -7,17 +7,18 @@
 
 use std::collections::BTreeMap;
 
-use super::aabb::shape_aabb;
+use super::aabb::{shape_aabb, Aabb};
 use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};
 use super::manifold_reuse::{is_flat_sided, ManifoldOrigin};
 use super::narrow_phase::{collide, PairCache};
+use super::support::Rounded;
 use crate::body::{Body, BodyKind};
 use crate::dynamics::contact::Contact;
 use crate::dynamics::contact_solver::ContactImpulse;
 use crate::dynamics::material::Material;
 use crate::events::EventRecorder;
 use crate::id::{BodyId, SlotPool};
-use crate::math::Transform;
+use crate::math::{DVec3, Transform};
 use crate::shape::Shape;
 
 /// The base speculative distance, m: contacts are made this far before touching (plus the
@@ -129,6 +130,7 @@ impl ContactManager {
             return;
         };
         use rayon::prelude::*;
+        let margin = self.broad_phase.margin();
         let movers: Vec<&Body> = bodies.iter().map(|(_, b)| b).filter(moving).collect();
         let mut moves = std::mem::take(&mut self.proxy_moves);
         moves.clear();
@@ -136,7 +138,7 @@ impl ContactManager {
             moves.par_extend(
                 movers
                     .par_chunks(PROXY_CHUNK)
-                    .flat_map_iter(|chunk| chunk.iter().flat_map(|b| proxy_updates(b, dt))),
+                    .flat_map_iter(|chunk| chunk.iter().flat_map(|b| proxy_updates(b, dt, margin))),
             )
         });
         for m in &moves {
@@ -148,7 +150,7 @@ impl ContactManager {
     /// Moves one body's proxies to its current pose (any kind: a static body moved by the user
     /// too), fat boxes stretched by its velocity times `dt`.
     pub fn move_body_proxies(&mut self, body: &Body, dt: f64) {
-        for m in proxy_updates(body, dt) {
+        for m in proxy_updates(body, dt, self.broad_phase.margin()) {
             self.broad_phase.move_proxy(m.key, m.aabb, m.displacement);
         }
     }
@@ -282,16 +284,41 @@ impl ContactManager {
     }
 }
 
-/// A body's proxies with their tight boxes at its current pose and its displacement over `dt`.
-fn proxy_updates(body: &Body, dt: f64) -> impl Iterator<Item = ProxyUpdate> + '_ {
+/// A body's proxies with their boxes at its current pose and its displacement over `dt`.
+///
+/// The box is the tight one, except for a body spinning fast enough that its tight box would
+/// outgrow the fat box's `margin` within a few steps (a far corner moving more than a quarter of
+/// the margin per step): that proxy gets the box of the ball about the centre of mass that the
+/// shape turns in. It does not change as the body turns, so the proxy stays in the tree; with the
+/// tight box, a tumbling box was re-inserted every few steps.
+fn proxy_updates(body: &Body, dt: f64, margin: f64) -> impl Iterator<Item = ProxyUpdate> + '_ {
     let pose = body.transform();
     let displacement = body.state.linear_velocity * dt;
+    let turn = body.state.angular_velocity.length() * dt;
+    let com = body.com_world();
     body.shape.iter().flat_map(move |shape| {
         body.proxies.iter().enumerate().map(move |(child, &key)| {
             let (leaf_shape, local) = leaf(shape, child as u32);
-            ProxyUpdate { key, aabb: shape_aabb(leaf_shape, &pose.mul_transform(&local)), displacement }
+            let leaf_pose =
+                if matches!(shape, Shape::Compound(_)) { pose.mul_transform(&local) } else { pose };
+            let tight = shape_aabb(leaf_shape, &leaf_pose);
+            let aabb = match turning_ball(leaf_shape, &leaf_pose, com) {
+                Some(radius) if turn * radius > 0.25 * margin => {
+                    tight.union(&Aabb::from_center_half_extents(com, DVec3::splat(radius)))
+                }
+                _ => tight,
+            };
+            ProxyUpdate { key, aabb, displacement }
         })
     })
+}
+
+/// The radius of the ball about `com` (the body's centre of mass) that a convex leaf at
+/// `leaf_pose` stays in however the body turns; `None` for shapes without one (planes, height
+/// fields, static meshes).
+fn turning_ball(shape: &Shape, leaf_pose: &Transform, com: DVec3) -> Option<f64> {
+    let convex = Rounded::of(shape.moving_collision_shape())?;
+    Some((leaf_pose.translation - com).length() + convex.bounding_radius())
 }
 
 fn slot_body(bodies: &SlotPool<Body>, slot: usize) -> Option<(BodyId, &Body)> {

@@ -251,8 +251,9 @@ impl SolverBody {
             if let (Some(body), true) = (body, in_flow[lane]) {
                 let (q_principal, l_principal) = (rotations[lane], momenta[lane]);
                 body.w = q_principal * (l_principal / body.inertia_principal);
-                body.set_orientation((q_principal * body.principal_rotation_local.inverse()).normalize());
-                body.refresh_inverse_inertia();
+                // Only the orientation: no constraint reads this body's rotation matrix or world
+                // inertia after its integration (the write-back takes `q`, `dp`, `v` and `ω`).
+                body.q = (q_principal * body.principal_rotation_local.inverse()).normalize();
             }
         }
     }
