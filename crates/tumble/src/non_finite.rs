@@ -49,6 +49,12 @@ fn is_simulated(kind: BodyKind, awake: bool, isolated: bool) -> bool {
     kind != BodyKind::Static && awake && !isolated
 }
 
+/// Whether a moving body's state after the solve is non-finite; the solve's write-back asks,
+/// with the body at hand, and lists the slots for check 2.
+pub(crate) fn left_non_finite(body: &crate::body::Body) -> bool {
+    body.kind != BodyKind::Static && !is_finite_state(&body.state)
+}
+
 /// The velocities one step of `dt` under gravity and the pending force and torque would give
 /// (the solver's first kick, `SolverBody::integrate_velocity`, over the whole step). Without a
 /// torque the angular velocity only shrinks by damping, so it is taken as it is.
@@ -84,10 +90,14 @@ impl World {
         self.non_finite_events.clear();
         let mut step_start = std::mem::take(&mut self.step_start_states);
         step_start.clear();
+        self.bullet_starts.clear();
         let mut failing = Vec::new();
         for (id, body) in self.bodies.iter() {
             if !is_simulated(body.kind, body.is_awake(), body.isolated) {
                 continue;
+            }
+            if body.bullet {
+                self.bullet_starts.push(step_start.len());
             }
             step_start.push((id.index(), body.state));
             let (v, w) = velocities_after(body, self.gravity, dt);
@@ -112,20 +122,21 @@ impl World {
     }
 
     /// Check 2 (module docs): isolates every simulated body the solve left non-finite, back at
-    /// its state from the start of the step.
+    /// its state from the start of the step. The solve's write-back found them
+    /// (`left_non_finite`), while each body's state was at hand.
     pub(crate) fn isolate_non_finite_bodies(&mut self) {
-        let failing: Vec<(BodyId, BodyState)> = self
-            .step_start_states
-            .iter()
-            .filter_map(|&(slot, start)| {
-                let body = self.bodies.iter_slot(slot)?;
-                let id = self.bodies.id_of_slot(slot)?;
-                (!body.isolated && !is_finite_state(&body.state)).then_some((id.into(), start))
-            })
-            .collect();
-        for (id, state) in failing {
-            self.isolate_body(id, state);
+        let failing = std::mem::take(&mut self.non_finite_after_solve);
+        for &slot in &failing {
+            // `step_start_states` is in slot order.
+            let Ok(entry) = self.step_start_states.binary_search_by_key(&slot, |&(s, _)| s) else {
+                continue;
+            };
+            if let Some(id) = self.bodies.id_of_slot(slot) {
+                self.isolate_body(id.into(), self.step_start_states[entry].1);
+            }
         }
+        self.non_finite_after_solve = failing;
+        self.non_finite_after_solve.clear();
     }
 
     /// Takes the body out of the simulation at `last_state` (its last finite one), at rest.

@@ -71,9 +71,11 @@ impl World {
         self.profile.lap(Phase::Sleep, &mut clock);
 
         // Forces and torques act for one step only.
-        for (_, body) in self.bodies.iter_mut() {
-            body.force_world = DVec3::ZERO;
-            body.torque_world = DVec3::ZERO;
+        if std::mem::take(&mut self.forces_pending) {
+            for (_, body) in self.bodies.iter_mut() {
+                body.force_world = DVec3::ZERO;
+                body.torque_world = DVec3::ZERO;
+            }
         }
 
         // Compensated (Kahan) summation: 720,000 steps of 1/240 s still add up to 3000 s exactly,

@@ -115,6 +115,21 @@ pub struct World {
     /// Static proxies under a bullet's sweep, refilled for each bullet (`continuous.rs`).
     #[serde(skip)]
     pub(crate) continuous_candidates: Vec<crate::collision::ProxyId>,
+    /// The entries of `step_start_states` that are bullets, for the continuous stage.
+    #[serde(skip)]
+    pub(crate) bullet_starts: Vec<usize>,
+    /// The slots of the bodies whose state the solve left non-finite (`non_finite.rs`).
+    #[serde(skip)]
+    pub(crate) non_finite_after_solve: Vec<usize>,
+    /// Whether a force or torque may have been applied since the last step cleared them (the
+    /// step then clears every body's; otherwise there is nothing to clear). A loaded world
+    /// starts with it set.
+    #[serde(skip, default = "crate::world::yes")]
+    pub(crate) forces_pending: bool,
+}
+
+pub(crate) fn yes() -> bool {
+    true
 }
 
 impl Default for World {
@@ -192,6 +207,9 @@ impl World {
             non_finite_events: Vec::new(),
             step_start_states: Vec::new(),
             continuous_candidates: Vec::new(),
+            bullet_starts: Vec::new(),
+            non_finite_after_solve: Vec::new(),
+            forces_pending: false,
         })
     }
 
@@ -622,6 +640,7 @@ impl World {
         check_vec("force", force)?;
         check_vec("point", point_world)?;
         self.wake_body(id)?;
+        self.forces_pending = true;
         let body = self.body_mut(id)?;
         body.force_world += force;
         body.torque_world += (point_world - body.state.com_world).cross(force);
@@ -632,6 +651,7 @@ impl World {
     pub fn apply_force(&mut self, id: BodyId, force: DVec3) -> Result<(), WorldError> {
         check_vec("force", force)?;
         self.wake_body(id)?;
+        self.forces_pending = true;
         self.body_mut(id)?.force_world += force;
         Ok(())
     }
@@ -640,6 +660,7 @@ impl World {
     pub fn apply_torque(&mut self, id: BodyId, torque: DVec3) -> Result<(), WorldError> {
         check_vec("torque", torque)?;
         self.wake_body(id)?;
+        self.forces_pending = true;
         self.body_mut(id)?.torque_world += torque;
         Ok(())
     }

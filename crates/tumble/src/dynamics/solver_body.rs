@@ -68,6 +68,7 @@ impl SolverBody {
         angular_damping: 0.0,
     };
 
+    #[inline(always)]
     pub fn from_body(body: &Body) -> SolverBody {
         SolverBody {
             v: body.state.linear_velocity,
