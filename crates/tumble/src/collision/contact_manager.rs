@@ -354,8 +354,15 @@ fn update_manifold(contact: &mut Contact, a: &Body, b: &Body, dt: f64) {
     }
     // Contacts within reach of this step's relative motion are made now, so the solver can stop
     // the bodies at the surface (speculative contact).
+    // A point of the shape moves by at most |ω| times its distance from the centre of mass.
     let spin = |body: &Body, pose: &Transform, shape: &Shape| {
-        body.state.angular_velocity.length() * shape_aabb(shape, pose).half_extents().length()
+        let w = body.state.angular_velocity.length();
+        if w == 0.0 {
+            return 0.0;
+        }
+        let reach = turning_ball(shape, pose, body.com_world())
+            .unwrap_or_else(|| shape_aabb(shape, pose).half_extents().length());
+        w * reach
     };
     let closing = ((a.state.linear_velocity - b.state.linear_velocity).length()
         + spin(a, &pose_a, leaf_a)

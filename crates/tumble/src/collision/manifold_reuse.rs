@@ -55,7 +55,7 @@ pub fn is_flat_sided(shape: &Shape) -> bool {
 fn reach(shape: &Shape) -> f64 {
     match shape {
         Shape::Cuboid(c) => c.half_extents.length(),
-        Shape::ConvexHull(h) => h.vertices().iter().map(|v| v.length()).fold(0.0, f64::max),
+        Shape::ConvexHull(h) => h.bounding_radius(),
         _ => f64::INFINITY,
     }
 }

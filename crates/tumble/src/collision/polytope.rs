@@ -133,7 +133,7 @@ impl Polytope<'_> {
     pub fn bounding_radius(&self) -> f64 {
         match self {
             Polytope::Cuboid { half_extents } => half_extents.length(),
-            Polytope::Hull(h) => h.vertices().iter().fold(0.0_f64, |m, v| m.max(v.length())),
+            Polytope::Hull(h) => h.bounding_radius(),
         }
     }
 }

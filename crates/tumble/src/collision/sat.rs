@@ -91,6 +91,12 @@ impl<'p, 'h> Frames<'p, 'h> {
         n.dot(self.support_b(-n)) - self.a.face_offset(f)
     }
 
+    /// The gap between the shapes along the unit axis `n` (A's frame, pointing from A to B):
+    /// B's lowest point along it minus A's highest.
+    fn separation_along(&self, n: DVec3) -> f64 {
+        n.dot(self.support_b(-n)) - n.dot(self.a.vertex(self.a.support_index(n)))
+    }
+
     fn face_b(&self, f: usize) -> f64 {
         let n = self.normals_b[f];
         let on_face = self.verts_b[self.b.face_vertices(f)[0] as usize];
@@ -98,11 +104,38 @@ impl<'p, 'h> Frames<'p, 'h> {
     }
 
     fn query(&self) -> SatQuery {
+        match self.query_within(f64::INFINITY) {
+            Ok(q) => q,
+            Err(_) => unreachable!("no axis separates by more than infinity"),
+        }
+    }
+
+    /// The query, or — as soon as one face axis separates the shapes by more than `margin` —
+    /// that axis and its separation: the pair is then apart, and the other axes need not be
+    /// measured (most pairs whose fat boxes overlap are apart, and the edge pairs are the
+    /// expensive part).
+    fn query_within(&self, margin: f64) -> Result<SatQuery, (SatFeature, f64)> {
         let best = |count: usize, f: &dyn Fn(usize) -> f64| {
-            (0..count).map(|i| (i, f(i))).fold((0, f64::NEG_INFINITY), |m, x| if x.1 > m.1 { x } else { m })
+            let mut best = (0, f64::NEG_INFINITY);
+            for i in 0..count {
+                let s = f(i);
+                if s > best.1 {
+                    best = (i, s);
+                    if s > margin {
+                        break;
+                    }
+                }
+            }
+            best
         };
         let face_a = best(self.a.face_count(), &|f| self.face_a(f));
+        if face_a.1 > margin {
+            return Err((SatFeature::FaceA(face_a.0 as u32), face_a.1));
+        }
         let face_b = best(self.b.face_count(), &|f| self.face_b(f));
+        if face_b.1 > margin {
+            return Err((SatFeature::FaceB(face_b.0 as u32), face_b.1));
+        }
         // Edge data gathered once, so the E_A × E_B loop is plain arithmetic.
         let edges_a: SmallVec<[EdgeData; 32]> =
             self.a.edges().iter().map(|e| EdgeData::of_a(self, e)).collect();
@@ -129,7 +162,7 @@ impl<'p, 'h> Frames<'p, 'h> {
                 }
             }
         }
-        SatQuery { face_a, face_b, edges }
+        Ok(SatQuery { face_a, face_b, edges })
     }
 }
 
@@ -205,7 +238,29 @@ pub fn collide_polytopes(
             return None;
         }
     }
-    let q = frames.query();
+    // An edge pair that separated last step: its axis now, with the separation measured by the
+    // support points (the edges themselves need no longer be the closest features along it, so
+    // their distance would not do). Only for the early out: a face is what the hysteresis below
+    // keeps.
+    if let SatFeature::EdgePair(ia, ib) = cache.feature {
+        if let (Some(ea), Some(eb)) = (a.edges().get(ia as usize), b.edges().get(ib as usize)) {
+            let (ea, eb) = (EdgeData::of_a(&frames, ea), EdgeData::of_b(&frames, eb));
+            if let Some((_, n)) = edge_axis(ea.start, ea.dir, eb.start, eb.dir, a.interior_point()) {
+                let s = frames.separation_along(n);
+                if s > margin {
+                    cache.separation = s;
+                    return None;
+                }
+            }
+        }
+    }
+    let q = match frames.query_within(margin) {
+        Ok(q) => q,
+        Err((feature, separation)) => {
+            *cache = SatCache { feature, separation };
+            return None;
+        }
+    };
     let best = q.max_separation();
     if best > margin {
         cache.feature = if q.face_a.1 == best {

@@ -115,7 +115,7 @@ impl Core<'_> {
             Core::Cylinder { radius, half_height } | Core::Cone { radius, half_height } => {
                 radius.hypot(half_height)
             }
-            Core::Hull(h) => h.vertices().iter().fold(0.0_f64, |m, v| m.max(v.length())),
+            Core::Hull(h) => h.bounding_radius(),
             Core::Triangle(v) => v.iter().fold(0.0_f64, |m, p| m.max(p.length())),
         }
     }

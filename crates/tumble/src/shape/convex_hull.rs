@@ -59,6 +59,9 @@ pub struct ConvexHull {
     edges: Vec<HullEdge>,
     /// The vertex average: strictly inside, used to orient edge-pair axes outward.
     interior_point: DVec3,
+    /// The farthest vertex's distance from the origin: the radius of the ball about the origin
+    /// the hull stays in however it turns (speculative margins, spinning proxies, manifold reuse).
+    bounding_radius: f64,
 }
 
 impl ConvexHull {
@@ -92,6 +95,11 @@ impl ConvexHull {
     /// A point strictly inside the hull (the vertex average).
     pub fn interior_point(&self) -> DVec3 {
         self.interior_point
+    }
+
+    /// The radius of the smallest ball about the origin that holds the hull.
+    pub fn bounding_radius(&self) -> f64 {
+        self.bounding_radius
     }
 
     /// Index of the vertex farthest along `dir_local` (the lowest index on ties).
@@ -185,7 +193,8 @@ impl ConvexHull {
             return Err(HullError::Degenerate { reason: "the surface is not a sphere (V - E + F != 2)" });
         }
         let interior_point = vertices.iter().copied().sum::<DVec3>() / vertices.len() as f64;
-        Ok(ConvexHull { vertices, faces, edges, interior_point })
+        let bounding_radius = vertices.iter().fold(0.0_f64, |m, v| m.max(v.length()));
+        Ok(ConvexHull { vertices, faces, edges, interior_point, bounding_radius })
     }
 }
 
