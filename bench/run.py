@@ -37,16 +37,18 @@ RAPIER = os.path.join(BENCH, "rapier", "target", "release", "tumble-bench-rapier
 ENGINES = ["tumble", "tumble-matched", "rapier", "pybullet", "mujoco"]
 
 # "tumble-matched": Tumble at the fewest substeps whose quality result still beats the best peer's
-# on that scene (measured 2026-12-01 with --substeps 1..8; the table prints both quality results,
-# so the match can be checked). The "tumble" rows run the engine defaults (8 substeps).
-MATCHED_SUBSTEPS = {
-    "pyramid": 5,
-    "large_pyramid": 5,
-    "rain": 2,
-    "chain": 4,
-    "ragdolls": 3,
-    "convex_pile": 5,
-    "tumbling": 1,
+# on that scene (measured 2026-12-01 with --substeps 1..8 and a few --solver settings; the table
+# prints both quality results, so the match can be checked). The "tumble" rows run the engine
+# defaults (8 substeps).
+MATCHED = {
+    # 4 substeps hold the pyramid within 1.3 cm with stiffer damping (3.8 cm at the default 10).
+    "pyramid": ["--substeps", "4", "--solver", "contact_damping_ratio=20"],
+    "large_pyramid": ["--substeps", "5"],
+    "rain": ["--substeps", "2"],
+    "chain": ["--substeps", "4"],
+    "ragdolls": ["--substeps", "3"],
+    "convex_pile": ["--substeps", "5"],
+    "tumbling": ["--substeps", "1"],
 }
 
 # Steps per run in the table: the scene's own count where the whole table stays under ~20 minutes
@@ -116,8 +118,7 @@ def command(engine, python, scene_file, scene, steps, runs, quality, threads):
     if engine == "tumble":
         return [TUMBLE, "bench", scene, "--json", "--runs", str(runs), "--steps", str(steps), "--threads", str(threads)]
     if engine == "tumble-matched":
-        substeps = ["--substeps", str(MATCHED_SUBSTEPS.get(scene, 8))]
-        return command("tumble", python, scene_file, scene, steps, runs, quality, threads) + substeps
+        return command("tumble", python, scene_file, scene, steps, runs, quality, threads) + MATCHED.get(scene, [])
     if engine == "rapier":
         return [RAPIER, scene_file, "--runs", str(runs), "--steps", str(steps)]
     script = os.path.join(BENCH, "peers", f"{engine}_peer.py")
@@ -197,6 +198,8 @@ def table(all_results, engines, steps_of):
                 settings += f"; threads {last.get('threads', 1)}; {len(res['rates'])} runs"
                 if res["error"]:
                     settings += f" (the next {res['error']})"
+                if e == "tumble-matched" and "--solver" in MATCHED.get(scene, []):
+                    settings += "; " + ", ".join(a for a in MATCHED[scene] if "=" in a)
                 if last.get("note"):
                     settings += f"; {last['note']}"
                 version = last.get("version", "")

@@ -442,4 +442,47 @@ mod tests {
         }
         assert!(matches!(cache.feature, SatFeature::FaceA(_)));
     }
+
+    /// Whatever the cache holds — last step's axis from far away, possibly an edge pair that is no
+    /// longer the closest pair of features — the early outs only ever skip pairs that are apart:
+    /// with the cache carried from a separated pose, the answer at any other pose (touching, or
+    /// not) is the one a fresh cache gives.
+    #[test]
+    fn a_carried_cache_never_hides_a_contact() {
+        let a = Polytope::Cuboid { half_extents: DVec3::new(0.5, 0.3, 0.2) };
+        let b = Polytope::Cuboid { half_extents: DVec3::new(0.4, 0.25, 0.15) };
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut unit = || {
+            // xorshift: a fixed sequence of poses.
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (mut edge_cached, mut touching) = (0, 0);
+        for _ in 0..4000 {
+            let axis = DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::Z);
+            let q = DQuat::from_axis_angle(axis, 3.2 * unit());
+            let dir = DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::X);
+            let far = Transform::new(dir * (0.9 + 0.1 * unit().abs()), q);
+            let turn = DQuat::from_axis_angle(
+                DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::Y),
+                3.2 * unit(),
+            );
+            let near = Transform::new(dir * (0.35 + 0.5 * unit().abs()), turn * q);
+            let mut carried = SatCache::default();
+            let apart = collide_polytopes(&a, &Transform::IDENTITY, &b, &far, 0.02, &mut carried);
+            if apart.is_some() {
+                continue;
+            }
+            edge_cached += usize::from(matches!(carried.feature, SatFeature::EdgePair(..)));
+            let with_carried = collide_polytopes(&a, &Transform::IDENTITY, &b, &near, 0.02, &mut carried);
+            let fresh =
+                collide_polytopes(&a, &Transform::IDENTITY, &b, &near, 0.02, &mut SatCache::default());
+            assert_eq!(with_carried.is_some(), fresh.is_some(), "near pose {near:?}");
+            touching += usize::from(fresh.is_some());
+        }
+        // The sequence exercises both the carried edge axes and contacts found despite them.
+        assert!(edge_cached > 100 && touching > 100, "edge-pair caches {edge_cached}, touching {touching}");
+    }
 }
