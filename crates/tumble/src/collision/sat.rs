@@ -451,14 +451,8 @@ mod tests {
     fn a_carried_cache_never_hides_a_contact() {
         let a = Polytope::Cuboid { half_extents: DVec3::new(0.5, 0.3, 0.2) };
         let b = Polytope::Cuboid { half_extents: DVec3::new(0.4, 0.25, 0.15) };
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut unit = || {
-            // xorshift: a fixed sequence of poses.
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::scenes::rng::SplitMix64::new(0x2545_f491_4f6c_dd1d);
+        let mut unit = || rng.range(-1.0, 1.0);
         let (mut edge_cached, mut touching) = (0, 0);
         for _ in 0..4000 {
             let axis = DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::Z);

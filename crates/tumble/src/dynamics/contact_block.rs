@@ -412,13 +412,8 @@ mod tests {
     /// pivoting ends at the same solution as from every row free: the problem has one solution.
     #[test]
     fn a_cached_start_reaches_the_same_solution() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut unit = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::scenes::rng::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
+        let mut unit = || rng.range(-1.0, 1.0);
         let mut started_elsewhere = 0;
         for _ in 0..2000 {
             // K = JJᵀ + 0.1 I of random rows: symmetric positive definite, coupled.

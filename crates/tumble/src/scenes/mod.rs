@@ -17,7 +17,7 @@ mod pyramid;
 mod quality;
 mod ragdolls;
 mod rain;
-mod rng;
+pub(crate) mod rng;
 mod tumbling;
 
 pub use chain::chain;
