@@ -37,6 +37,8 @@ struct Transition {
     pair: BodyPair,
     sensor: bool,
     delta: i32,
+    /// The contact is its pair's only one (`Contact::only_one_of_pair`).
+    only_one: bool,
 }
 
 /// Records contact state changes during a step and turns them into per-pair events.
@@ -59,6 +61,8 @@ struct NetChange {
     sensor: bool,
     delta: i32,
     on_now: i32,
+    /// Every transition of the pair came from its only contact.
+    only_one: bool,
 }
 
 fn ordered_pair(contact: &Contact) -> BodyPair {
@@ -80,7 +84,12 @@ impl EventRecorder {
         let after = Self::state(contact);
         if before != after {
             let delta = if after { 1 } else { -1 };
-            self.transitions.push(Transition { pair: ordered_pair(contact), sensor: contact.sensor, delta });
+            self.transitions.push(Transition {
+                pair: ordered_pair(contact),
+                sensor: contact.sensor,
+                delta,
+                only_one: contact.only_one_of_pair,
+            });
         }
     }
 
@@ -91,6 +100,7 @@ impl EventRecorder {
                 pair: ordered_pair(contact),
                 sensor: contact.sensor,
                 delta: -1,
+                only_one: contact.only_one_of_pair,
             });
         }
     }
@@ -113,14 +123,31 @@ impl EventRecorder {
         net.clear();
         for t in self.transitions.drain(..) {
             match net.last_mut() {
-                Some(last) if last.pair == t.pair => last.delta += t.delta,
-                _ => net.push(NetChange { pair: t.pair, sensor: t.sensor, delta: t.delta, on_now: 0 }),
+                Some(last) if last.pair == t.pair => {
+                    last.delta += t.delta;
+                    last.only_one &= t.only_one;
+                }
+                _ => net.push(NetChange {
+                    pair: t.pair,
+                    sensor: t.sensor,
+                    delta: t.delta,
+                    on_now: 0,
+                    only_one: t.only_one,
+                }),
             }
         }
-        for contact in contacts.values() {
-            if Self::state(contact) {
-                if let Ok(i) = net.binary_search_by_key(&ordered_pair(contact), |n| n.pair) {
-                    net[i].on_now += 1;
+        if net.iter().all(|n| n.only_one) {
+            // A pair's only contact went from off to on (+1), on to off (−1), or back (0): the
+            // net change says it all, and the contacts need not be counted.
+            for n in net.iter_mut() {
+                n.on_now = n.delta.max(0);
+            }
+        } else {
+            for contact in contacts.values() {
+                if Self::state(contact) {
+                    if let Ok(i) = net.binary_search_by_key(&ordered_pair(contact), |n| n.pair) {
+                        net[i].on_now += 1;
+                    }
                 }
             }
         }

@@ -194,6 +194,7 @@ impl ContactManager {
                     material: Material::combine(&a.material, &b.material),
                     sensor: a.is_sensor || b.is_sensor,
                     touching: false,
+                    only_one_of_pair: a.proxies.len() == 1 && b.proxies.len() == 1,
                 },
             );
         }

@@ -31,6 +31,10 @@ pub(crate) struct Contact {
     pub sensor: bool,
     /// The manifold has points (within the speculative margin) — the pair links islands.
     pub touching: bool,
+    /// Neither body is a compound: this is the only contact of its pair of bodies (events.rs
+    /// then needs no count of the pair's contacts).
+    #[serde(default)]
+    pub only_one_of_pair: bool,
 }
 
 impl Contact {
