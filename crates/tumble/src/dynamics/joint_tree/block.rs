@@ -76,20 +76,33 @@ impl Ldlt {
 
     /// Factors the symmetric block `a` (only its lower triangle is read). A pivot smaller than
     /// `1e-12` of the largest diagonal entry counts as zero.
+    #[cfg(test)]
     pub fn factor(a: &Block) -> Ldlt {
+        let mut f = Ldlt::EMPTY;
+        f.factor_from(a);
+        f
+    }
+
+    /// Factors `a` into `self` (see `factor`), writing only the entries of its size: a tree
+    /// refactors every block every substep, and building whole 6×6 arrays and copying them out
+    /// was a fifth of a chain's step.
+    pub fn factor_from(&mut self, a: &Block) {
         debug_assert_eq!(a.rows, a.cols);
         let n = a.rows;
         let scale = (0..n).map(|i| a.m[i][i].abs()).fold(0.0, f64::max);
         let tolerance = 1e-12 * scale;
-        let mut l = [[0.0; MAX_DIM]; MAX_DIM];
         let mut d = [0.0; MAX_DIM];
-        let mut inv_d = [0.0; MAX_DIM];
+        self.dim = n;
+        let (l, inv_d) = (&mut self.l, &mut self.inv_d);
         for j in 0..n {
             let dj = a.m[j][j] - (0..j).map(|k| l[j][k] * l[j][k] * d[k]).sum::<f64>();
             if dj.abs() <= tolerance || !dj.is_finite() {
                 // Degenerate direction: no impulse along it, and no coupling through it.
                 d[j] = 0.0;
                 inv_d[j] = 0.0;
+                for row in l.iter_mut().take(n).skip(j + 1) {
+                    row[j] = 0.0;
+                }
                 continue;
             }
             d[j] = dj;
@@ -99,7 +112,6 @@ impl Ldlt {
                 l[i][j] = s * inv_d[j];
             }
         }
-        Ldlt { dim: n, l, inv_d }
     }
 
     /// Solves `A x = b` in place.
@@ -126,10 +138,22 @@ impl Ldlt {
     }
 
     /// `A⁻¹ b` for a block `b` with `dim` rows: the same three sweeps on all columns at once.
+    #[cfg(test)]
     pub fn solve_block(&self, b: &Block) -> Block {
+        let mut x = Block::zero(0, 0);
+        self.solve_block_into(b, &mut x);
+        x
+    }
+
+    /// `x = A⁻¹ b`, written over `x` (only the entries of `b`'s size).
+    pub fn solve_block_into(&self, b: &Block, x: &mut Block) {
         debug_assert_eq!(b.rows, self.dim);
         let (n, cols) = (self.dim, b.cols);
-        let mut x = *b;
+        x.rows = b.rows;
+        x.cols = cols;
+        for (row_x, row_b) in x.m.iter_mut().zip(&b.m).take(n) {
+            row_x[..cols].copy_from_slice(&row_b[..cols]);
+        }
         for i in 1..n {
             for k in 0..i {
                 let lik = self.l[i][k];
@@ -157,7 +181,6 @@ impl Ldlt {
                 }
             }
         }
-        x
     }
 }
 

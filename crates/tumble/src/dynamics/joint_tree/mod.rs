@@ -386,9 +386,9 @@ impl JointTrees {
             let parent = self.nodes[i].parent;
             let (done, rest) = self.nodes.split_at_mut(i + 1);
             let node = &mut done[i];
-            node.factor = Ldlt::factor(&node.diagonal);
+            node.factor.factor_from(&node.diagonal);
             if parent != NONE {
-                node.multiplier = node.factor.solve_block(&node.coupling);
+                node.factor.solve_block_into(&node.coupling, &mut node.multiplier);
                 let p = &mut rest[parent as usize - i - 1];
                 p.diagonal.sub_transpose_mul(&node.coupling, &node.multiplier);
                 node.multiplier.sub_transpose_mul_vector(&node.x, &mut p.x);
