@@ -29,13 +29,20 @@ impl World {
             self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
         }
         self.profile.lap(Phase::Proxies, &mut clock);
-        let joints = &self.joints;
-        let joined = |a: BodyId, b: BodyId| {
-            joints.iter().any(|(_, j)| {
-                !j.collide_connected && ((j.body_a == a && j.body_b == b) || (j.body_a == b && j.body_b == a))
-            })
-        };
+        // Jointed pairs that may not collide, sorted once: each new pair is looked up in them
+        // (walking every joint for every new pair was a twentieth of a pile of ragdolls' step).
+        let mut jointed = std::mem::take(&mut self.scratch.jointed_pairs);
+        jointed.clear();
+        jointed.extend(
+            self.joints
+                .iter()
+                .filter(|(_, j)| !j.collide_connected)
+                .map(|(_, j)| (j.body_a.min(j.body_b), j.body_a.max(j.body_b))),
+        );
+        jointed.sort_unstable();
+        let joined = |a: BodyId, b: BodyId| jointed.binary_search(&(a.min(b), a.max(b))).is_ok();
         self.contact_manager.find_new_contacts(&self.bodies, joined);
+        self.scratch.jointed_pairs = jointed;
         self.profile.lap(Phase::BroadPhase, &mut clock);
         self.contact_manager.update_contacts(&self.bodies, dt, self.pool.as_deref());
         self.profile.lap(Phase::NarrowPhase, &mut clock);

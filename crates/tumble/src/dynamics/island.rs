@@ -77,6 +77,9 @@ pub(crate) struct IslandScratch {
     pub parent: Vec<u32>,
     /// Shortest sleep time per island root.
     pub min_sleep: Vec<f64>,
+    /// Body pairs joined by a joint that keeps them from colliding, lower id first, sorted (the
+    /// broad phase's filter for new pairs).
+    pub jointed_pairs: Vec<(BodyId, BodyId)>,
 }
 
 impl World {
