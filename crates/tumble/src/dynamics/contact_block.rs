@@ -48,18 +48,7 @@ impl NormalBlock {
     /// The impulse increments that solve the complementarity problem of the module docs (rows
     /// that would pull are released, released rows that would approach are taken back), or `None`
     /// when the system cannot be factored (the caller then solves the rows one by one).
-    ///
-    /// `cache`, where the matrix is the same as in earlier calls (see [`FactorCache`]): the
-    /// pivoting starts from the set of free rows the last call under the same `key` ended with,
-    /// whose factors it kept — a manifold whose points keep their roles (the usual case at rest)
-    /// is then solved with one substitution and no factoring. Murty's least-index method finds the
-    /// one solution from any starting set (the matrix is positive definite), so the start only
-    /// changes how soon it gets there.
-    pub fn solve(
-        &self,
-        accumulated: &[f64; MAX_POINTS],
-        mut cache: Option<(&mut FactorCache, u8)>,
-    ) -> Option<[f64; MAX_POINTS]> {
+    pub fn solve(&self, accumulated: &[f64; MAX_POINTS]) -> Option<[f64; MAX_POINTS]> {
         let n = self.count;
         if n == 1 {
             // One row: the scalar soft update, clamped.
@@ -67,17 +56,10 @@ impl NormalBlock {
             let delta = if k > 0.0 { (self.rhs[0] / k).max(-accumulated[0]) } else { return None };
             return Some([delta, 0.0, 0.0, 0.0]);
         }
-        let mut active = match &cache {
-            Some((cache, key)) => cache.start(*key),
-            None => [true; MAX_POINTS],
-        };
+        let mut active = [true; MAX_POINTS];
         // Murty's method needs at most 2ⁿ pivots in exact arithmetic.
-        for pivot in 0..=(1usize << n) {
-            let kept = match &cache {
-                Some((cache, key)) if pivot == 0 => cache.factors(*key, &active),
-                _ => None,
-            };
-            let (delta, factors) = self.solve_with(&active, accumulated, kept)?;
+        for _ in 0..=(1usize << n) {
+            let delta = self.solve_with(&active, accumulated)?;
             let violated = (0..n).find(|&i| {
                 if active[i] {
                     accumulated[i] + delta[i] < 0.0
@@ -93,12 +75,7 @@ impl NormalBlock {
             });
             match violated {
                 Some(i) => active[i] = !active[i],
-                None => {
-                    if let Some((cache, key)) = cache.as_mut() {
-                        cache.keep(*key, &active, factors);
-                    }
-                    return Some(delta);
-                }
+                None => return Some(delta),
             }
         }
         // Pivoting did not settle: on a nearly singular block (two points almost on top of each
@@ -107,9 +84,6 @@ impl NormalBlock {
         // pile of hulls. Projected Gauss–Seidel sweeps are bounded instead: each row update is
         // the exact minimiser of the block's quadratic along that row, so the solution can only
         // come closer.
-        if let Some((cache, _)) = cache {
-            *cache = FactorCache::EMPTY;
-        }
         Some(self.projected_gauss_seidel(accumulated))
     }
 
@@ -136,8 +110,7 @@ impl NormalBlock {
     }
 
     /// The increments with the rows in `active` free and the others released (their accumulated
-    /// impulse taken away: their increment is fixed at `−accumulated`), and the factors used
-    /// (`kept`, when given, are the factors of this very system).
+    /// impulse taken away: their increment is fixed at `−accumulated`).
     ///
     /// Always a 4×4 system, whatever the count: a released or unused row becomes a unit row with a
     /// zero right-hand side (its solution is 0, and it couples to nothing), so the factorisation
@@ -146,31 +119,7 @@ impl NormalBlock {
         &self,
         active: &[bool; MAX_POINTS],
         accumulated: &[f64; MAX_POINTS],
-        kept: Option<&Ldlt>,
-    ) -> Option<([f64; MAX_POINTS], Option<Ldlt>)> {
-        let (m, b, scale) = self.system(active, accumulated);
-        let n = self.count;
-        let free = |i: usize| i < n && active[i];
-        let factors = match kept {
-            Some(factors) => Some(*factors),
-            None if (0..n).any(free) => Some(Ldlt::factor(&m, scale)?),
-            None => None,
-        };
-        let x = factors.as_ref().map_or([0.0; MAX_POINTS], |f| f.solve(&b));
-        let mut delta = [0.0; MAX_POINTS];
-        for i in 0..n {
-            delta[i] = if free(i) { x[i] } else { -accumulated[i] };
-        }
-        Some((delta, factors))
-    }
-
-    /// The system of `solve_with`: the matrix with released and unused rows made unit rows, the
-    /// right-hand side, and the largest diagonal entry of the free rows (the regularisation's scale).
-    fn system(
-        &self,
-        active: &[bool; MAX_POINTS],
-        accumulated: &[f64; MAX_POINTS],
-    ) -> ([[f64; MAX_POINTS]; MAX_POINTS], [f64; MAX_POINTS], f64) {
+    ) -> Option<[f64; MAX_POINTS]> {
         let n = self.count;
         let free = |i: usize| i < n && active[i];
         let mut m = [[0.0; MAX_POINTS]; MAX_POINTS];
@@ -191,51 +140,14 @@ impl NormalBlock {
                 }
             }
         }
-        (m, b, scale)
-    }
-}
-
-/// What a manifold's block solve keeps across the passes of one step: the set of free rows the
-/// last solve ended with, and the factors of its system.
-///
-/// The block's matrix is `K + Γ`: while both bodies are still, `K` is the step-start coupling
-/// (contact_solver.rs), and `Γ` depends only on the pass (soft rows in the biased pass, none in
-/// the relax pass) and on which rows are speculative. The caller keeps one cache per kind of
-/// pass and keys it by the speculative rows; a matching key means the same matrix, so the kept
-/// factors are the ones factoring again would give, bit for bit.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct FactorCache {
-    /// Key, free rows (bit i: row i free), and their factors (`None`: no row was free).
-    entry: Option<(u8, u8, Option<Ldlt>)>,
-}
-
-impl FactorCache {
-    pub const EMPTY: FactorCache = FactorCache { entry: None };
-
-    /// The set to start pivoting from: the last one under `key`, or every row free.
-    fn start(&self, key: u8) -> [bool; MAX_POINTS] {
-        match self.entry {
-            Some((k, free, _)) if k == key => std::array::from_fn(|i| free & (1 << i) != 0),
-            _ => [true; MAX_POINTS],
+        let any_free = (0..n).any(free);
+        let x = if any_free { Ldlt::factor(&m, scale)?.solve(&b) } else { [0.0; MAX_POINTS] };
+        let mut delta = [0.0; MAX_POINTS];
+        for i in 0..n {
+            delta[i] = if free(i) { x[i] } else { -accumulated[i] };
         }
+        Some(delta)
     }
-
-    /// The kept factors, if they are those of `active` under `key`.
-    fn factors(&self, key: u8, active: &[bool; MAX_POINTS]) -> Option<&Ldlt> {
-        match &self.entry {
-            Some((k, free, factors)) if *k == key && *free == mask(active) => factors.as_ref(),
-            _ => None,
-        }
-    }
-
-    fn keep(&mut self, key: u8, active: &[bool; MAX_POINTS], factors: Option<Ldlt>) {
-        self.entry = Some((key, mask(active), factors));
-    }
-}
-
-/// The free rows as bits (bit i: row i).
-fn mask(active: &[bool; MAX_POINTS]) -> u8 {
-    active.iter().enumerate().fold(0, |m, (i, &a)| m | (u8::from(a) << i))
 }
 
 /// The factors `L D Lᵀ = m + εI` of a symmetric positive (semi-)definite 4×4 system, with a
@@ -244,14 +156,8 @@ fn mask(active: &[bool; MAX_POINTS]) -> u8 {
 /// `L` has a unit diagonal.
 #[derive(Clone, Copy, Debug)]
 struct Ldlt {
-    /// `L` below its diagonal, row by row: `L[i][j]` (j < i) at `i(i−1)/2 + j`.
-    lower: [f64; MAX_POINTS * (MAX_POINTS - 1) / 2],
+    l: [[f64; MAX_POINTS]; MAX_POINTS],
     inv_d: [f64; MAX_POINTS],
-}
-
-/// Where `L[i][j]` (j < i) is kept in `Ldlt::lower`.
-const fn lower_index(i: usize, j: usize) -> usize {
-    i * (i - 1) / 2 + j
 }
 
 impl Ldlt {
@@ -283,23 +189,17 @@ impl Ldlt {
                 l[i][j] = s * inv_d[j];
             }
         }
-        let mut lower = [0.0; MAX_POINTS * (MAX_POINTS - 1) / 2];
-        for i in 1..MAX_POINTS {
-            for j in 0..i {
-                lower[lower_index(i, j)] = l[i][j];
-            }
-        }
-        Some(Ldlt { lower, inv_d })
+        Some(Ldlt { l, inv_d })
     }
 
     /// `x` with `L D Lᵀ x = b`.
     fn solve(&self, b: &[f64; MAX_POINTS]) -> [f64; MAX_POINTS] {
-        let l = &self.lower;
+        let l = &self.l;
         let mut y = [0.0; MAX_POINTS];
         for i in 0..MAX_POINTS {
             let mut s = b[i];
             for k in 0..i {
-                s -= l[lower_index(i, k)] * y[k];
+                s -= l[i][k] * y[k];
             }
             y[i] = s;
         }
@@ -307,7 +207,7 @@ impl Ldlt {
         for i in (0..MAX_POINTS).rev() {
             let mut s = y[i] * self.inv_d[i];
             for k in i + 1..MAX_POINTS {
-                s -= l[lower_index(k, i)] * x[k];
+                s -= l[k][i] * x[k];
             }
             x[i] = s;
         }
@@ -334,7 +234,7 @@ mod tests {
     #[test]
     fn solves_a_positive_system() {
         let b = block(&[&[4.0, 1.0, 0.5], &[1.0, 3.0, 0.2], &[0.5, 0.2, 2.0]], &[1.0, 2.0, 3.0]);
-        let x = b.solve(&[10.0; 4], None).unwrap();
+        let x = b.solve(&[10.0; 4]).unwrap();
         for i in 0..3 {
             let r: f64 = (0..3).map(|j| b.matrix[i][j] * x[j]).sum::<f64>() - b.rhs[i];
             assert!(r.abs() < 1e-8, "residual {r}");
@@ -354,7 +254,7 @@ mod tests {
                 b.matrix[i][j] = 1.0 + p[i].0 * p[j].0 + p[i].1 * p[j].1;
             }
         }
-        let x = b.solve(&[0.0; 4], None).unwrap();
+        let x = b.solve(&[0.0; 4]).unwrap();
         for v in &x[..4] {
             assert!((v - 0.25).abs() < 1e-6, "{x:?}");
         }
@@ -367,7 +267,7 @@ mod tests {
         // Points on either side of a long body's centre couple negatively. Alone, row 0 needs
         // +0.5; solved together with row 1, which wants to pull hard, both come out negative.
         let b = block(&[&[2.0, -1.9], &[-1.9, 2.0]], &[1.0, -20.0]);
-        let x = b.solve(&[0.0; 4], None).unwrap();
+        let x = b.solve(&[0.0; 4]).unwrap();
         assert_eq!(x[1], 0.0);
         assert!((x[0] - 0.5).abs() < 1e-8, "{x:?}");
         // Both conditions hold: row 1 is released and does not approach.
@@ -390,7 +290,7 @@ mod tests {
             &[-9.077163161259174, -0.000646214267500958, -10.168401354419347, -10.214360235440127],
         );
         let accumulated = [0.0, 0.6605284165810472, 0.0, 0.0];
-        let x = b.solve(&accumulated, None).unwrap();
+        let x = b.solve(&accumulated).unwrap();
         for i in 0..4 {
             let total = accumulated[i] + x[i];
             assert!(total >= 0.0 && total < 1.0, "{x:?}");
@@ -403,45 +303,8 @@ mod tests {
     #[test]
     fn pulling_rows_are_released() {
         let b = block(&[&[2.0, 1.0], &[1.0, 2.0]], &[3.0, -3.0]);
-        let x = b.solve(&[0.0; 4], None).unwrap();
+        let x = b.solve(&[0.0; 4]).unwrap();
         assert_eq!(x[1], 0.0);
         assert!((x[0] - 1.5).abs() < 1e-8, "{x:?}");
-    }
-
-    /// Started from the free set a kept cache remembers (another right-hand side's answer), the
-    /// pivoting ends at the same solution as from every row free: the problem has one solution.
-    #[test]
-    fn a_cached_start_reaches_the_same_solution() {
-        let mut rng = crate::scenes::rng::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
-        let mut unit = || rng.range(-1.0, 1.0);
-        let mut started_elsewhere = 0;
-        for _ in 0..2000 {
-            // K = JJᵀ + 0.1 I of random rows: symmetric positive definite, coupled.
-            let rows: Vec<[f64; 6]> = (0..4).map(|_| std::array::from_fn(|_| unit())).collect();
-            let mut block = NormalBlock { count: 4, ..Default::default() };
-            for i in 0..4 {
-                for j in 0..4 {
-                    block.matrix[i][j] =
-                        (0..6).map(|k| rows[i][k] * rows[j][k]).sum::<f64>() + if i == j { 0.1 } else { 0.0 };
-                }
-            }
-            let mut cache = FactorCache::EMPTY;
-            // Prime the cache with another load on the same matrix.
-            block.rhs = std::array::from_fn(|_| unit());
-            let first: [f64; 4] = std::array::from_fn(|_| unit().abs());
-            block.solve(&first, Some((&mut cache, 3))).unwrap();
-            block.rhs = std::array::from_fn(|_| unit());
-            let accumulated: [f64; 4] = std::array::from_fn(|_| unit().abs());
-            started_elsewhere += usize::from(cache.start(3) != [true; 4]);
-            let cached = block.solve(&accumulated, Some((&mut cache, 3))).unwrap();
-            let fresh = block.solve(&accumulated, None).unwrap();
-            for i in 0..4 {
-                assert!(
-                    (cached[i] - fresh[i]).abs() < 1e-9 * (1.0 + fresh[i].abs()),
-                    "{cached:?} vs {fresh:?}"
-                );
-            }
-        }
-        assert!(started_elsewhere > 200, "only {started_elsewhere} solves started from a kept set");
     }
 }

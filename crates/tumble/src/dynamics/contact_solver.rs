@@ -31,7 +31,7 @@
 //! Accumulated impulses are kept per point (matched by feature id across steps) and applied again
 //! at every substep's warm start.
 
-use crate::dynamics::contact_block::{FactorCache, NormalBlock, MAX_POINTS};
+use crate::dynamics::contact_block::{NormalBlock, MAX_POINTS};
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
 use crate::dynamics::softness::Softness;
@@ -259,12 +259,6 @@ pub(crate) struct ContactConstraint {
     torsional_impulse: f64,
     /// The normal rows' `K` at the step start, used while both bodies are still (see `solve`).
     coupling_start: [[f64; MAX_POINTS]; MAX_POINTS],
-    /// The factors of the normal block built on `coupling_start`, for the biased and the relax
-    /// passes (contact_block.rs, `FactorCache`).
-    #[serde(skip)]
-    factors_biased: FactorCache,
-    #[serde(skip)]
-    factors_relax: FactorCache,
 }
 
 /// Applies the impulses `pᵢ` at levers `(r_aᵢ, r_bᵢ)` (`−pᵢ` to a, `+pᵢ` to b) at once: one
@@ -308,8 +302,6 @@ impl ContactConstraint {
         rolling_impulse: DVec3::ZERO,
         torsional_impulse: 0.0,
         coupling_start: [[0.0; MAX_POINTS]; MAX_POINTS],
-        factors_biased: FactorCache::EMPTY,
-        factors_relax: FactorCache::EMPTY,
     };
 
     /// Stage "prepare" for one manifold. `com_a`, `com_b` are the centres of mass at the step
@@ -340,8 +332,6 @@ impl ContactConstraint {
             rolling_impulse: DVec3::ZERO,
             torsional_impulse: 0.0,
             coupling_start: [[0.0; MAX_POINTS]; MAX_POINTS],
-            factors_biased: FactorCache::EMPTY,
-            factors_relax: FactorCache::EMPTY,
         };
         for (pc, input) in constraint.points.iter_mut().zip(points) {
             // The narrow phase's point is midway between the surfaces; each body's anchor is its
@@ -511,16 +501,16 @@ impl ContactConstraint {
         // the step began), the levers have changed by at most that — `K` by a thousandth for
         // levers of a metre, a few percent for a centimetre-sized body, far below the factor 2
         // that matters — and the step-start `K` serves.
-        let still = a.still && b.still;
-        let coupling = if still { self.coupling_start } else { normal_coupling(&anchors[..count], n, a, b) };
-        // Which rows are speculative: with the pass, that decides `Γ` (see below).
-        let mut speculative = 0u8;
+        let coupling = if a.still && b.still {
+            self.coupling_start
+        } else {
+            normal_coupling(&anchors[..count], n, a, b)
+        };
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let s = separations[i];
             let (r_a, r_b) = anchors[i];
             let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
                 // Speculative: allow closing the gap, no more.
-                speculative |= 1 << i;
                 (s * ctx.inv_h, 1.0, 0.0)
             } else if use_bias {
                 let soft = pc.softness;
@@ -551,15 +541,7 @@ impl ContactConstraint {
             block.matrix[i][i] += gamma;
             accumulated[i] = pc.normal_impulse;
         }
-        // While `K` is the step-start one, the block's matrix is fixed by the pass and, in the
-        // biased pass, by which rows are speculative (the relax pass has no soft rows): its
-        // factors are kept and reused.
-        let cache = match (still, use_bias) {
-            (false, _) => None,
-            (true, true) => Some((&mut self.factors_biased, speculative)),
-            (true, false) => Some((&mut self.factors_relax, 0)),
-        };
-        let deltas = block.solve(&accumulated, cache).unwrap_or_else(|| {
+        let deltas = block.solve(&accumulated).unwrap_or_else(|| {
             // One by one, each row against its own effective mass.
             let mut deltas = [0.0; MAX_POINTS];
             for i in 0..count {
@@ -672,7 +654,7 @@ impl ContactConstraint {
         for row in 0..count {
             block.matrix[row] = coupling[row];
         }
-        let Some(deltas) = block.solve(&accumulated, None) else { return };
+        let Some(deltas) = block.solve(&accumulated) else { return };
         for row in 0..block.count {
             let pc = &mut self.points[rows[row]];
             let applied = deltas[row];
