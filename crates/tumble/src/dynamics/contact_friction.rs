@@ -27,6 +27,9 @@ pub(crate) struct PatchFriction {
     /// `PointConstraint::anchors`).
     r_a_local: DVec3,
     r_b_local: DVec3,
+    /// The shared levers of the centre at the step start: used while both bodies are still, as
+    /// the normal rows use theirs (contact_solver.rs, `solve_normals`).
+    levers_start: (DVec3, DVec3),
     /// Each point's distance from the centre in the tangent plane (the twist row's lever arms).
     twist_arms: [f64; MAX_POINTS],
     /// Inverse of the 2×2 tangent effective mass at the centre, embedded in 3×3 over the plane,
@@ -45,6 +48,7 @@ impl PatchFriction {
     pub const EMPTY: PatchFriction = PatchFriction {
         r_a_local: DVec3::ZERO,
         r_b_local: DVec3::ZERO,
+        levers_start: (DVec3::ZERO, DVec3::ZERO),
         twist_arms: [0.0; MAX_POINTS],
         tangent_masses: (DMat3::ZERO, 0.0),
         tangent_impulse: DVec3::ZERO,
@@ -53,12 +57,14 @@ impl PatchFriction {
 
     /// Stage "prepare": the centre of the points (offsets `arms` from each centre of mass at the
     /// step start) and the warm-start impulses.
+    #[allow(clippy::too_many_arguments)]
     pub fn prepare(
         a: &SolverBody,
         b: &SolverBody,
         arms: &[(DVec3, DVec3)],
         radii: (f64, f64),
         normal: DVec3,
+        com_offset: DVec3,
         tangent_impulse: DVec3,
         twist_impulse: f64,
     ) -> PatchFriction {
@@ -74,6 +80,7 @@ impl PatchFriction {
         PatchFriction {
             r_a_local,
             r_b_local,
+            levers_start: shared_levers((r_a, r_b), com_offset, a, b),
             twist_arms,
             tangent_masses: tangent_masses(a, b, (r_a, r_b), normal),
             tangent_impulse: projector * tangent_impulse,
@@ -81,10 +88,22 @@ impl PatchFriction {
         }
     }
 
-    /// The centre's offsets now (see `PointConstraint::anchors`).
+    /// The levers the friction impulse acts at now: the centre's offsets turned with the bodies
+    /// (see `PointConstraint::anchors`) and shared, or the step-start ones while both are still.
     #[inline]
-    fn anchors(&self, radii: (f64, f64), normal: DVec3, a: &SolverBody, b: &SolverBody) -> (DVec3, DVec3) {
-        round_anchors((self.r_a_local, self.r_b_local), radii, normal, a, b)
+    fn levers(
+        &self,
+        radii: (f64, f64),
+        normal: DVec3,
+        com_offset: DVec3,
+        a: &SolverBody,
+        b: &SolverBody,
+    ) -> (DVec3, DVec3) {
+        if a.still && b.still && radii == (0.0, 0.0) {
+            return self.levers_start;
+        }
+        let anchors = round_anchors((self.r_a_local, self.r_b_local), radii, normal, a, b);
+        shared_levers(anchors, com_offset, a, b)
     }
 
     /// Stage "warm start".
@@ -96,7 +115,7 @@ impl PatchFriction {
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) {
-        let (r_a, r_b) = shared_levers(self.anchors(radii, normal, a, b), com_offset, a, b);
+        let (r_a, r_b) = self.levers(radii, normal, com_offset, a, b);
         apply_point_impulse(a, b, r_a, r_b, self.tangent_impulse);
         let twist = self.twist_impulse * normal;
         a.w -= a.inv_inertia * twist;
@@ -146,7 +165,7 @@ impl PatchFriction {
         // slip, but the 2×2 mass turns the impulse away from it (by ~20° at a box corner, which
         // cut the friction of a sliding box by 6%); so a sliding patch is updated with the
         // isotropic mass, whose fixed point on the rim is anti-parallel to the slip velocity.
-        let (r_a, r_b) = shared_levers(self.anchors(radii, normal, a, b), com_offset, a, b);
+        let (r_a, r_b) = self.levers(radii, normal, com_offset, a, b);
         let (tangent_mass, sliding_mass) = self.tangent_masses;
         let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
         let vt = dv - normal.dot(dv) * normal;

@@ -134,6 +134,13 @@ impl PointConstraint {
         self.base_separation + n.dot(moved_b - moved_a)
     }
 
+    /// The normal row's angular Jacobians at the step start, `r_a0 × n` and `r_b0 × n`: while both
+    /// bodies are still the row is linear in them (see `ContactConstraint::solve_normals`).
+    #[inline]
+    fn arms_start(&self, n: DVec3) -> (DVec3, DVec3) {
+        (self.r_a0.cross(n), self.r_b0.cross(n))
+    }
+
     const EMPTY: PointConstraint = PointConstraint {
         softness: Softness::RIGID_VELOCITY,
         r_a0: DVec3::ZERO,
@@ -376,7 +383,16 @@ impl ContactConstraint {
         } else {
             (DVec3::ZERO, 0.0)
         };
-        constraint.friction = PatchFriction::prepare(a, b, &offsets[..count], radii, normal, tangent, twist);
+        constraint.friction = PatchFriction::prepare(
+            a,
+            b,
+            &offsets[..count],
+            radii,
+            normal,
+            constraint.com_offset,
+            tangent,
+            twist,
+        );
         constraint
     }
 
@@ -391,13 +407,18 @@ impl ContactConstraint {
         }
         let radii = self.radii;
         let count = self.point_count;
-        let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
-        let mut impulses = [DVec3::ZERO; MAX_POINTS];
-        for (i, pc) in self.points[..count].iter().enumerate() {
-            levers[i] = shared_levers(pc.anchors(radii, self.normal, a, b), self.com_offset, a, b);
-            impulses[i] = pc.normal_impulse * self.normal;
+        if a.still && b.still && radii == (0.0, 0.0) {
+            let normal_impulses: [f64; MAX_POINTS] = std::array::from_fn(|i| self.points[i].normal_impulse);
+            self.apply_still_normal_impulses(a, b, &normal_impulses);
+        } else {
+            let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+            let mut impulses = [DVec3::ZERO; MAX_POINTS];
+            for (i, pc) in self.points[..count].iter().enumerate() {
+                levers[i] = shared_levers(pc.anchors(radii, self.normal, a, b), self.com_offset, a, b);
+                impulses[i] = pc.normal_impulse * self.normal;
+            }
+            apply_point_impulses(a, b, &levers[..count], &impulses[..count]);
         }
-        apply_point_impulses(a, b, &levers[..count], &impulses[..count]);
         self.friction.warm_start(radii, self.normal, self.com_offset, a, b);
         let angular = self.rolling_impulse + self.torsional_impulse * self.normal;
         a.w -= a.inv_inertia * angular;
@@ -484,12 +505,34 @@ impl ContactConstraint {
         let mut accumulated = [0.0; MAX_POINTS];
         let mut anchors = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
         let mut separations = [0.0; MAX_POINTS];
-        for (i, pc) in self.points[..count].iter().enumerate() {
-            let material = pc.anchors(radii, n, a, b);
-            separations[i] = pc.separation(material, a, b, n);
-            anchors[i] = shared_levers(material, self.com_offset, a, b);
+        let mut normal_velocities = [0.0; MAX_POINTS];
+        // While both bodies are still (moved under 1 mm, turned under 1 mrad since the step
+        // began, solver_body.rs) each row is linear in the step-start levers: a point moved by
+        // `dp + turn × r₀` and moves at `v + ω × r₀`, so `n·` of either is `n·dp + turn·(r₀ × n)`.
+        // What that leaves out is second order, `|r| θ²/2` ≤ 0.5 µm on a lever of a metre, and
+        // the levers' own change, which the step-start `K` below leaves out as well. The step-start
+        // levers of a point lie on one normal line, so the pair's angular momentum is kept
+        // exactly, as with the shared levers. A resting pile's rows then cost dot products instead
+        // of turning every point with both bodies.
+        let still = a.still && b.still && radii == (0.0, 0.0);
+        if still {
+            let moved = n.dot(b.dp - a.dp);
+            let approach = n.dot(b.v - a.v);
+            for (i, pc) in self.points[..count].iter().enumerate() {
+                let (arm_a, arm_b) = pc.arms_start(n);
+                separations[i] = pc.base_separation + moved + b.turn.dot(arm_b) - a.turn.dot(arm_a);
+                normal_velocities[i] = approach + b.w.dot(arm_b) - a.w.dot(arm_a);
+            }
+        } else {
+            for (i, pc) in self.points[..count].iter().enumerate() {
+                let material = pc.anchors(radii, n, a, b);
+                separations[i] = pc.separation(material, a, b, n);
+                let (r_a, r_b) = shared_levers(material, self.com_offset, a, b);
+                anchors[i] = (r_a, r_b);
+                normal_velocities[i] = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
+            }
         }
-        if self.is_idle(&anchors[..count], &separations[..count], a, b, ctx) {
+        if self.is_idle(&normal_velocities[..count], &separations[..count], ctx) {
             return None;
         }
         // `K` of the levers the impulses act at now. The step-start `K` no longer matches them once
@@ -501,14 +544,9 @@ impl ContactConstraint {
         // the step began), the levers have changed by at most that — `K` by a thousandth for
         // levers of a metre, a few percent for a centimetre-sized body, far below the factor 2
         // that matters — and the step-start `K` serves.
-        let coupling = if a.still && b.still {
-            self.coupling_start
-        } else {
-            normal_coupling(&anchors[..count], n, a, b)
-        };
+        let coupling = if still { self.coupling_start } else { normal_coupling(&anchors[..count], n, a, b) };
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let s = separations[i];
-            let (r_a, r_b) = anchors[i];
             let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
                 // Speculative: allow closing the gap, no more.
                 (s * ctx.inv_h, 1.0, 0.0)
@@ -522,7 +560,7 @@ impl ContactConstraint {
             } else {
                 (0.0, 1.0, 0.0)
             };
-            let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
+            let vn = normal_velocities[i];
             if vn + bias < 0.0 {
                 // The approach speed at impact (for restitution) is the fastest seen when the row
                 // engages, before its impulse acts: gravity keeps speeding a falling body up after
@@ -551,15 +589,18 @@ impl ContactConstraint {
             deltas
         });
         let mut total_normal = 0.0;
-        let mut impulses = [DVec3::ZERO; MAX_POINTS];
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let applied = deltas[i];
             pc.normal_impulse = (pc.normal_impulse + applied).max(0.0);
             pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
             total_normal += pc.normal_impulse;
-            impulses[i] = applied * n;
         }
-        apply_point_impulses(a, b, &anchors[..count], &impulses[..count]);
+        if still {
+            self.apply_still_normal_impulses(a, b, &deltas);
+        } else {
+            let impulses: [DVec3; MAX_POINTS] = std::array::from_fn(|i| deltas[i] * n);
+            apply_point_impulses(a, b, &anchors[..count], &impulses[..count]);
+        }
         Some(total_normal)
     }
 
@@ -570,20 +611,35 @@ impl ContactConstraint {
     /// answer is zero (its matrix is positive definite), and friction bounded by a zero load has
     /// nothing to take back. The gaps between the boxes of a pile, and spheres about to land, are
     /// mostly such manifolds.
-    fn is_idle(
-        &self,
-        anchors: &[(DVec3, DVec3)],
-        separations: &[f64],
-        a: &SolverBody,
-        b: &SolverBody,
-        ctx: &StepContext,
-    ) -> bool {
-        let n = self.normal;
+    fn is_idle(&self, normal_velocities: &[f64], separations: &[f64], ctx: &StepContext) -> bool {
         !self.has_impulse()
-            && anchors.iter().zip(separations).all(|(&(r_a, r_b), &s)| {
-                let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
-                s > SOFT_BAND && vn + s * ctx.inv_h >= 0.0
-            })
+            && normal_velocities
+                .iter()
+                .zip(separations)
+                .all(|(&vn, &s)| s > SOFT_BAND && vn + s * ctx.inv_h >= 0.0)
+    }
+
+    /// Normal impulses `λᵢ n` at the step-start levers of a still pair (see `solve_normals`):
+    /// `−Σλᵢ n` and moments `−Σλᵢ (r_aᵢ × n)` on a, the opposite on b.
+    #[inline]
+    fn apply_still_normal_impulses(
+        &self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        impulses: &[f64; MAX_POINTS],
+    ) {
+        let (mut total, mut torque_a, mut torque_b) = (0.0, DVec3::ZERO, DVec3::ZERO);
+        for (pc, &l) in self.points[..self.point_count].iter().zip(impulses) {
+            let (arm_a, arm_b) = pc.arms_start(self.normal);
+            total += l;
+            torque_a += l * arm_a;
+            torque_b += l * arm_b;
+        }
+        let p = total * self.normal;
+        a.v -= a.inv_mass * p;
+        a.w -= a.inv_inertia * torque_a;
+        b.v += b.inv_mass * p;
+        b.w += b.inv_inertia * torque_b;
     }
 
     /// Whether any impulse is accumulated: normal, friction, twist, torsional or rolling.

@@ -18,24 +18,30 @@ pub(crate) struct SolverBody {
     pub w: DVec3,
     /// Centre-of-mass displacement since the start of the step, world frame.
     pub dp: DVec3,
-    /// Body-frame orientation now.
-    pub q: DQuat,
     pub inv_mass: f64,
-    /// World inverse inertia for the current `q` (refreshed after every position update).
-    pub inv_inertia: DMat3,
-    /// `q` as a matrix (body frame to world), refreshed with it: the contacts turn their material
-    /// points with it several times a substep, and a matrix does that in half the operations.
-    pub rotation: DMat3,
+    /// The turn since the step began as a rotation vector, world frame (`q = exp(turn) q_start`),
+    /// kept while the body is still: its contacts then move their points by `turn × r`, to first
+    /// order (contact_solver.rs, `ContactConstraint::solve_normals`).
+    pub turn: DVec3,
+    // The flags side by side (no padding between 8-byte fields); what the contact rows read
+    // (`v`, `w`, `dp`, `inv_mass`, `turn`, `still`, `inv_inertia`) lies in the first three lines.
     kind: BodyKind,
     /// The body has moved less than [`STILL_DISTANCE`] and turned less than [`STILL_TURN`] since
     /// the step began: its contacts' effective masses from the step start still hold (the levers
     /// they were built from have moved by at most that).
     pub still: bool,
-    /// `q` at the start of the step.
-    q_start: DQuat,
     /// All three principal moments are equal (a sphere, a cube): every axis is principal, the
     /// free flow is a rotation about `ω` at constant `ω`, and the world inertia never changes.
     isotropic: bool,
+    /// World inverse inertia for the current `q` (refreshed after every position update).
+    pub inv_inertia: DMat3,
+    /// `q` as a matrix (body frame to world), refreshed with it: the contacts turn their material
+    /// points with it several times a substep, and a matrix does that in half the operations.
+    pub rotation: DMat3,
+    /// Body-frame orientation now.
+    pub q: DQuat,
+    /// `q` at the start of the step.
+    q_start: DQuat,
     inertia_principal: DVec3,
     principal_rotation_local: DQuat,
     force: DVec3,
@@ -57,6 +63,7 @@ impl SolverBody {
         rotation: DMat3::IDENTITY,
         kind: BodyKind::Static,
         still: true,
+        turn: DVec3::ZERO,
         q_start: DQuat::IDENTITY,
         isotropic: true,
         inertia_principal: DVec3::ONE,
@@ -80,6 +87,7 @@ impl SolverBody {
             rotation: DMat3::from_quat(body.state.rotation),
             kind: body.kind,
             still: true,
+            turn: DVec3::ZERO,
             q_start: body.state.rotation,
             isotropic: body.inertia_principal.x == body.inertia_principal.y
                 && body.inertia_principal.y == body.inertia_principal.z,
@@ -148,6 +156,12 @@ impl SolverBody {
         // |q·q_start| = cos(θ/2) of the turn since the step began.
         self.still = self.dp.length_squared() < STILL_DISTANCE * STILL_DISTANCE
             && q.dot(self.q_start).abs() > (0.5 * STILL_TURN).cos();
+        if self.still {
+            // `q q_start⁻¹ = (sin(θ/2) u, cos(θ/2))`; below a milliradian `2 sin(θ/2) u` is the
+            // rotation vector `θ u` to a relative 4e-8.
+            let turn = q * self.q_start.conjugate();
+            self.turn = 2.0 * turn.w.signum() * DVec3::new(turn.x, turn.y, turn.z);
+        }
     }
 
     fn refresh_inverse_inertia(&mut self) {
