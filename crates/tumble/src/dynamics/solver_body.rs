@@ -164,6 +164,27 @@ impl SolverBody {
         }
     }
 
+    /// A dynamic body at rest at the step start, oriented `q` (for tests of the constraint stages).
+    #[cfg(test)]
+    pub(crate) fn dynamic_for_test(inv_mass: f64, inv_inertia_local: DVec3, q: DQuat) -> SolverBody {
+        let mut body = SolverBody::FIXED;
+        body.kind = BodyKind::Dynamic;
+        body.inv_mass = inv_mass;
+        body.inertia_principal = inv_inertia_local.recip();
+        body.q_start = q;
+        body.set_orientation(q);
+        body.refresh_inverse_inertia();
+        body
+    }
+
+    /// Moves the body to `dp` from its step-start position, oriented `q` (for tests).
+    #[cfg(test)]
+    pub(crate) fn move_for_test(&mut self, dp: DVec3, q: DQuat) {
+        self.dp = dp;
+        self.set_orientation(q);
+        self.refresh_inverse_inertia();
+    }
+
     fn refresh_inverse_inertia(&mut self) {
         let r = DMat3::from_quat(self.q * self.principal_rotation_local);
         self.inv_inertia = r * DMat3::from_diagonal(self.inertia_principal.recip()) * r.transpose();
