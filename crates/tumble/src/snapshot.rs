@@ -18,8 +18,9 @@ const MAGIC: &[u8; 8] = b"TUMBLESN";
 /// added to a saved struct shifts everything after it, so serde defaults cannot make an older
 /// payload readable; the version says so instead.) 3: bodies carry the `bullet` flag. 4: contacts
 /// carry the poses their manifold was made at, the world whether its proxies are in place, and a
-/// body's fields are in a new order.
-pub const SNAPSHOT_VERSION: u32 = 4;
+/// body's fields are in a new order. 5: contact points carry how long they have been learning
+/// their steady load.
+pub const SNAPSHOT_VERSION: u32 = 5;
 const HEADER_LEN: usize = 8 + 4 + 8 + 8;
 
 /// Why a snapshot could not be read.

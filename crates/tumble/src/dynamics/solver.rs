@@ -59,10 +59,12 @@ pub struct SolverSettings {
     pub solve_iterations: u32,
     /// Relax sweeps per substep (0 allowed). Default 1.
     pub relax_iterations: u32,
-    /// Time constant, s, over which a contact learns the steady load it carries, so that it holds
-    /// that load without sagging (0 = plain soft contacts, which sag by load/stiffness: 2.6 cm
-    /// over a stack of ten boxes at 4 substeps). Joints do not use it: their loads turn with the
-    /// bodies, and a learned load that lags a swinging pendulum pulls it apart. Default 0.1 s.
+    /// Time constant, s, over which a settled contact learns the steady load it carries, so that
+    /// it holds that load without sagging (0 = plain soft contacts, which sag by load/stiffness:
+    /// 2.6 cm over a stack of ten boxes at 4 substeps). A new contact learns faster, over its age,
+    /// down to a fifth of this (`ContactConstraint::update_steady_load`). Joints do not use it:
+    /// their loads turn with the bodies, and a learned load that lags a swinging pendulum pulls
+    /// it apart. Default 0.5 s.
     #[serde(default)]
     pub steady_load_time: f64,
     /// Solve the rows holding tree-shaped groups of joints together (chains, robot arms)
@@ -92,7 +94,7 @@ impl Default for SolverSettings {
             warm_starting: true,
             solve_iterations: 1,
             relax_iterations: 1,
-            steady_load_time: 0.1,
+            steady_load_time: 0.5,
             joint_trees: true,
         }
     }
@@ -117,8 +119,8 @@ pub(crate) struct StepContext {
     pub warm_starting: bool,
     pub solve_iterations: u32,
     pub relax_iterations: u32,
-    /// Per-substep learning rate of the steady loads, `h / steady_load_time` (0 = off).
-    pub steady_load_rate: f64,
+    /// Time constant of settled contacts' steady loads, s (0 = off).
+    pub steady_load_time: f64,
 }
 
 impl StepContext {
@@ -151,11 +153,7 @@ impl StepContext {
             warm_starting: settings.warm_starting,
             solve_iterations: settings.solve_iterations.max(1),
             relax_iterations: settings.relax_iterations,
-            steady_load_rate: if settings.steady_load_time > 0.0 {
-                (h / settings.steady_load_time).min(1.0)
-            } else {
-                0.0
-            },
+            steady_load_time: settings.steady_load_time.max(0.0),
         }
     }
 }
@@ -307,8 +305,8 @@ impl World {
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, false));
                     data.contacts_with_bodies(thread, |c, a, b| c.solve(a, b, ctx, false));
                 }
-                if ctx.steady_load_rate > 0.0 {
-                    data.contacts(thread, |c| c.update_steady_load(ctx.steady_load_rate));
+                if ctx.steady_load_time > 0.0 {
+                    data.contacts(thread, |c| c.update_steady_load(ctx.steady_load_time, ctx.h));
                 }
                 if restitution {
                     let last = substep + 1 == ctx.substeps;
