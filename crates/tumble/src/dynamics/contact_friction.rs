@@ -16,7 +16,9 @@
 //! A single point (a ball, a tipped box's corner) is the same as per-point friction.
 
 use crate::dynamics::contact_block::MAX_POINTS;
-use crate::dynamics::contact_solver::{round_anchors, round_locals, shared_levers, tangent_block_inverse};
+use crate::dynamics::contact_solver::{
+    linear_pair, round_anchors, round_locals, shared_levers, tangent_block_inverse,
+};
 use crate::dynamics::joint::parts::{apply_point_impulse, point_mass_matrix};
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::{DMat3, DVec3};
@@ -99,7 +101,7 @@ impl PatchFriction {
         a: &SolverBody,
         b: &SolverBody,
     ) -> (DVec3, DVec3) {
-        if a.still && b.still && radii == (0.0, 0.0) {
+        if linear_pair(radii, a, b) {
             return self.levers_start;
         }
         let anchors = round_anchors((self.r_a_local, self.r_b_local), radii, normal, a, b);
