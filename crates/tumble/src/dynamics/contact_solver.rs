@@ -296,6 +296,19 @@ fn apply_point_impulses(
         torque_a += r_a.cross(pi);
         torque_b += r_b.cross(pi);
     }
+    apply_impulse_and_moments(a, b, p, torque_a, torque_b);
+}
+
+/// Applies the impulse `p` (`−p` to a, `+p` to b) and the moments it exerts about each centre of
+/// mass (`−torque_a` to a, `+torque_b` to b).
+#[inline]
+fn apply_impulse_and_moments(
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    p: DVec3,
+    torque_a: DVec3,
+    torque_b: DVec3,
+) {
     a.v -= a.inv_mass * p;
     a.w -= a.inv_inertia * torque_a;
     b.v += b.inv_mass * p;
@@ -675,11 +688,7 @@ impl ContactConstraint {
             torque_a += l * arm_a;
             torque_b += l * arm_b;
         }
-        let p = total * self.normal;
-        a.v -= a.inv_mass * p;
-        a.w -= a.inv_inertia * torque_a;
-        b.v += b.inv_mass * p;
-        b.w += b.inv_inertia * torque_b;
+        apply_impulse_and_moments(a, b, total * self.normal, torque_a, torque_b);
     }
 
     /// Whether any impulse is accumulated: normal, friction, twist, torsional or rolling.
