@@ -21,9 +21,7 @@
 //! Order: each list holds `(a, b)` with `a < b` (by slot index, then generation), sorted, each pair
 //! once — a pure function of the world state, so the same run gives the same events.
 
-use std::collections::BTreeMap;
-
-use crate::collision::ProxyKey;
+use crate::collision::contact_store::ContactStore;
 use crate::dynamics::contact::Contact;
 use crate::id::BodyId;
 use crate::world::World;
@@ -107,7 +105,7 @@ impl EventRecorder {
 
     /// Replaces the event lists with the changes recorded since the last call. `contacts` is the
     /// current set, from which the number of contacts still on per pair is counted.
-    pub fn finish(&mut self, contacts: &BTreeMap<(ProxyKey, ProxyKey), Contact>) {
+    pub fn finish(&mut self, contacts: &ContactStore) {
         for list in
             [&mut self.contact_begin, &mut self.contact_end, &mut self.sensor_begin, &mut self.sensor_end]
         {
@@ -143,7 +141,7 @@ impl EventRecorder {
                 n.on_now = n.delta.max(0);
             }
         } else {
-            for contact in contacts.values() {
+            for contact in contacts.iter() {
                 if Self::state(contact) {
                     if let Ok(i) = net.binary_search_by_key(&ordered_pair(contact), |n| n.pair) {
                         net[i].on_now += 1;

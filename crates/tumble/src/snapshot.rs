@@ -19,8 +19,9 @@ const MAGIC: &[u8; 8] = b"TUMBLESN";
 /// payload readable; the version says so instead.) 3: bodies carry the `bullet` flag. 4: contacts
 /// carry the poses their manifold was made at, the world whether its proxies are in place, and a
 /// body's fields are in a new order. 5: contact points carry how long they have been learning
-/// their steady load.
-pub const SNAPSHOT_VERSION: u32 = 5;
+/// their steady load. 6: contacts are a list in the order they were made (was a map keyed by
+/// their proxy pair).
+pub const SNAPSHOT_VERSION: u32 = 6;
 const HEADER_LEN: usize = 8 + 4 + 8 + 8;
 
 /// Why a snapshot could not be read.

@@ -76,7 +76,7 @@ impl World {
             h.f64(joint.force);
             h.f64(joint.torque);
         }
-        for contact in self.contact_manager.contacts.values() {
+        for contact in self.contact_manager.contacts.iter() {
             h.u64(contact.body_a.index() as u64);
             h.u64(contact.body_b.index() as u64);
             h.u64(u64::from(contact.touching));

@@ -76,6 +76,10 @@ pub struct World {
     /// The solver's contact rows, kept between steps to reuse the allocation.
     #[serde(skip)]
     pub(crate) contact_constraints: Vec<ContactConstraint>,
+    /// The places in the contact store of the contacts the solver takes this step, in store order
+    /// (kept to reuse the allocation).
+    #[serde(skip)]
+    pub(crate) solved_contacts: Vec<u32>,
     /// The step length for which the last step's finalize stage moved every moving body's
     /// proxies to its pose and velocity, if no body has changed since: a next step of the same
     /// length need not move them again. Any change through `body_mut` clears it; a loaded world
@@ -193,6 +197,7 @@ impl World {
             solver_bodies: Vec::new(),
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
+            solved_contacts: Vec::new(),
             proxies_in_place_for: None,
             body_partition: Default::default(),
             joint_trees: Default::default(),
@@ -411,7 +416,7 @@ impl World {
         let touching: Vec<BodyId> = self
             .contact_manager
             .contacts
-            .values()
+            .iter()
             .filter(|c| c.touching && (c.body_a == id || c.body_b == id))
             .map(|c| if c.body_a == id { c.body_b } else { c.body_a })
             .collect();
@@ -511,7 +516,7 @@ impl World {
         let substeps = f64::from(self.solver_settings.substeps);
         self.contact_manager
             .contacts
-            .values()
+            .iter()
             .filter_map(|c| {
                 let m = c.manifold.as_ref().filter(|_| c.touching)?;
                 Some(ContactView {
@@ -538,7 +543,7 @@ impl World {
 
     /// Number of touching contact manifolds.
     pub fn contact_count(&self) -> usize {
-        self.contact_manager.contacts.values().filter(|c| c.touching).count()
+        self.contact_manager.contacts.iter().filter(|c| c.touching).count()
     }
 
     /// Number of bodies.

@@ -2,19 +2,18 @@
 //! pairs into persistent contacts, and updates every contact's manifold (pipeline steps 2–3).
 //!
 //! Each leaf shape of a body (the shape itself, or each child of a compound) has one proxy. A
-//! proxy's payload packs the body slot and the leaf index. Contacts are kept in a `BTreeMap`
-//! keyed by the proxy pair (lower key first), so they are visited in the same order on every run.
-
-use std::collections::BTreeMap;
+//! proxy's payload packs the body slot and the leaf index. Contacts are kept in a
+//! `ContactStore` (contact_store.rs), in the order they were made, so they are visited in the
+//! same order on every run.
 
 use super::aabb::{shape_aabb, Aabb};
 use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};
+use super::contact_store::ContactStore;
 use super::manifold_reuse::{is_flat_sided, ManifoldOrigin};
-use super::narrow_phase::{collide, PairCache};
+use super::narrow_phase::collide;
 use super::support::Rounded;
 use crate::body::{Body, BodyKind};
 use crate::dynamics::contact::Contact;
-use crate::dynamics::contact_solver::ContactImpulse;
 use crate::dynamics::material::Material;
 use crate::events::EventRecorder;
 use crate::id::{BodyId, SlotPool};
@@ -65,7 +64,7 @@ const MIN_SHARED_CHUNKS: usize = 4;
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactManager {
     pub broad_phase: BroadPhase,
-    pub contacts: BTreeMap<(ProxyKey, ProxyKey), Contact>,
+    pub contacts: ContactStore,
     /// Begin/end transitions of contacts and sensor overlaps (`events.rs`).
     pub events: EventRecorder,
     /// The broad phase's new pairs, refilled each step (kept to reuse the allocation).
@@ -105,8 +104,8 @@ impl ContactManager {
             self.broad_phase.destroy_proxy(key);
         }
         let events = &mut self.events;
-        self.contacts.retain(|(a, b), contact| {
-            let keep = !body.proxies.contains(a) && !body.proxies.contains(b);
+        self.contacts.retain(|contact| {
+            let keep = !body.proxies.contains(&contact.proxy_a) && !body.proxies.contains(&contact.proxy_b);
             if !keep {
                 events.record_removed(contact);
             }
@@ -160,7 +159,7 @@ impl ContactManager {
         let mut new_pairs = std::mem::take(&mut self.new_pairs);
         self.broad_phase.find_new_pairs_into(&mut new_pairs);
         for &(key_a, key_b) in &new_pairs {
-            if self.contacts.contains_key(&(key_a, key_b)) {
+            if self.contacts.contains((key_a, key_b)) {
                 continue;
             }
             let (slot_a, child_a) = unpack(self.broad_phase.user_data(key_a));
@@ -178,25 +177,14 @@ impl ContactManager {
             if !a.filter.accepts(&b.filter) || joined(id_a, id_b) {
                 continue;
             }
-            self.contacts.insert(
+            self.contacts.push(Contact::new(
                 (key_a, key_b),
-                Contact {
-                    proxy_a: key_a,
-                    proxy_b: key_b,
-                    body_a: id_a,
-                    body_b: id_b,
-                    child_a,
-                    child_b,
-                    manifold: None,
-                    impulses: [ContactImpulse::default(); 4],
-                    cache: PairCache::default(),
-                    manifold_origin: None,
-                    material: Material::combine(&a.material, &b.material),
-                    sensor: a.is_sensor || b.is_sensor,
-                    touching: false,
-                    only_one_of_pair: a.proxies.len() == 1 && b.proxies.len() == 1,
-                },
-            );
+                (id_a, id_b),
+                (child_a, child_b),
+                Material::combine(&a.material, &b.material),
+                a.is_sensor || b.is_sensor,
+                a.proxies.len() == 1 && b.proxies.len() == 1,
+            ));
         }
         self.new_pairs = new_pairs;
     }
@@ -221,7 +209,7 @@ impl ContactManager {
         let Some(pool) = pool.filter(|_| self.contacts.len() >= MIN_SHARED_CHUNKS * NARROW_PHASE_CHUNK)
         else {
             // On one thread: drop, update and record in a single walk over the contacts.
-            self.contacts.retain(|_, contact| {
+            self.contacts.retain(|contact| {
                 let Some((a, b)) = kept(contact) else {
                     events.record_removed(contact);
                     return false;
@@ -238,7 +226,7 @@ impl ContactManager {
         };
         let before = &mut self.states_before;
         before.clear();
-        self.contacts.retain(|_, contact| {
+        self.contacts.retain(|contact| {
             if kept(contact).is_none() {
                 events.record_removed(contact);
                 return false;
@@ -248,10 +236,10 @@ impl ContactManager {
         });
         {
             use rayon::prelude::*;
-            let mut contacts: Vec<&mut Contact> = self.contacts.values_mut().collect();
+            let contacts = self.contacts.as_mut_slice();
             pool.install(|| {
                 contacts.par_chunks_mut(NARROW_PHASE_CHUNK).for_each(|chunk| {
-                    for contact in chunk.iter_mut() {
+                    for contact in chunk {
                         let a = bodies.get(contact.body_a.into()).expect("kept above");
                         let b = bodies.get(contact.body_b.into()).expect("kept above");
                         if a.is_awake() || b.is_awake() {
@@ -261,7 +249,7 @@ impl ContactManager {
                 })
             });
         }
-        for (contact, &before) in self.contacts.values().zip(&self.states_before) {
+        for (contact, &before) in self.contacts.iter().zip(&self.states_before) {
             self.events.record(contact, before);
         }
         self.events.finish(&self.contacts);
@@ -273,7 +261,7 @@ impl ContactManager {
         links.clear();
         links.extend(
             self.contacts
-                .values()
+                .iter()
                 .filter(|c| c.touching && !c.sensor)
                 .filter(|c| {
                     let dynamic =

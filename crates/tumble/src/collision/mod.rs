@@ -12,6 +12,7 @@ pub mod aabb;
 pub mod broad_phase;
 pub mod clip;
 pub(crate) mod contact_manager;
+pub(crate) mod contact_store;
 pub mod convex_contact;
 pub mod dynamic_tree;
 pub mod epa;

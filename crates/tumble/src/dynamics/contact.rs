@@ -38,6 +38,41 @@ pub(crate) struct Contact {
 }
 
 impl Contact {
+    /// A new contact between two leaf shapes' proxies (lower key first), not yet touching.
+    pub fn new(
+        (proxy_a, proxy_b): (ProxyKey, ProxyKey),
+        (body_a, body_b): (BodyId, BodyId),
+        (child_a, child_b): (u32, u32),
+        material: ContactMaterial,
+        sensor: bool,
+        only_one_of_pair: bool,
+    ) -> Contact {
+        Contact {
+            proxy_a,
+            proxy_b,
+            body_a,
+            body_b,
+            child_a,
+            child_b,
+            manifold: None,
+            impulses: [ContactImpulse::default(); 4],
+            cache: PairCache::default(),
+            manifold_origin: None,
+            material,
+            sensor,
+            touching: false,
+            only_one_of_pair,
+        }
+    }
+
+    /// A contact between two proxies of bodies 0 and 1, for tests of the store.
+    #[cfg(test)]
+    pub fn new_for_test(proxy_a: ProxyKey, proxy_b: ProxyKey) -> Contact {
+        let body = |i| BodyId::from_parts(i, 0);
+        let material = crate::dynamics::material::Material::combine(&Default::default(), &Default::default());
+        Contact::new((proxy_a, proxy_b), (body(0), body(1)), (0, 0), material, false, true)
+    }
+
     /// Replaces the manifold, carrying impulses over to points with the same feature id.
     pub fn set_manifold(&mut self, manifold: Option<Manifold>) {
         let mut impulses = [ContactImpulse::default(); 4];

@@ -241,13 +241,15 @@ impl World {
         // solved on all threads at once, with the same result for any thread count (colouring.rs).
         let mut contacts = std::mem::take(&mut self.contact_constraints);
         let mut colouring = std::mem::take(&mut self.contact_colouring);
-        let (manager, world_bodies) = (&self.contact_manager, &self.bodies);
-        let solved = || manager.contacts.values().filter(|c| takes_part(c, &bodies, world_bodies));
-        let mut restitution = false;
+        let mut solved = std::mem::take(&mut self.solved_contacts);
+        let (store, world_bodies) = (self.contact_manager.contacts.as_slice(), &self.bodies);
+        solved.clear();
+        solved.extend(
+            (0..store.len() as u32).filter(|&i| takes_part(&store[i as usize], &bodies, world_bodies)),
+        );
+        let restitution = solved.iter().any(|&i| store[i as usize].material.restitution != 0.0);
         let count = colouring.colour(
-            solved()
-                .inspect(|c| restitution |= c.material.restitution != 0.0)
-                .map(|c| (c.body_a.index(), c.body_b.index())),
+            solved.iter().map(|&i| (store[i as usize].body_a.index(), store[i as usize].body_b.index())),
             &bodies,
         );
         contacts.resize(count, ContactConstraint::EMPTY);
@@ -256,8 +258,8 @@ impl World {
             // Threads only where there are enough contacts to share (the result is the same).
             let pool = self.pool.as_deref().filter(|_| count >= PARALLEL_MIN_CONTACTS);
             run_on_threads(pool, |thread| {
-                let mine = thread.share(0..count);
-                for (input, contact) in solved().enumerate().skip(mine.start).take(mine.len()) {
+                for input in thread.share(0..count) {
+                    let contact = &store[solved[input] as usize];
                     coloured.put(thread, input, prepare_contact(contact, &bodies, world_bodies, &ctx));
                 }
             });
@@ -316,14 +318,14 @@ impl World {
         });
 
         // Keep the impulses for the next step's warm start (the same contacts in the same order).
-        let (manager, world_bodies) = (&mut self.contact_manager, &self.bodies);
-        let solved = manager.contacts.values_mut().filter(|c| takes_part(c, &bodies, world_bodies));
-        for (input, contact) in solved.enumerate() {
-            for (slot, impulse) in contact.impulses.iter_mut().zip(contacts[colouring.slot(input)].impulses())
-            {
+        let store = self.contact_manager.contacts.as_mut_slice();
+        for (input, &i) in solved.iter().enumerate() {
+            let impulses = &mut store[i as usize].impulses;
+            for (slot, impulse) in impulses.iter_mut().zip(contacts[colouring.slot(input)].impulses()) {
                 *slot = impulse;
             }
         }
+        self.solved_contacts = solved;
         self.contact_colouring = colouring;
         self.contact_constraints = contacts;
         self.body_partition = partition;
