@@ -70,13 +70,20 @@ pub(crate) struct ContactManager {
     /// The broad phase's new pairs, refilled each step (kept to reuse the allocation).
     #[serde(skip)]
     new_pairs: Vec<(ProxyKey, ProxyKey)>,
-    /// Each kept contact's event state before its manifold update, in contact order (threaded
-    /// narrow phase only).
+    /// What the threaded narrow phase found for each contact, in contact order.
     #[serde(skip)]
-    states_before: Vec<bool>,
+    outcomes: Vec<Outcome>,
     /// The proxies' new boxes (threaded proxy update only).
     #[serde(skip)]
     proxy_moves: Vec<ProxyUpdate>,
+}
+
+/// One contact's narrow-phase update: whether it is kept, and its event state before and after.
+#[derive(Clone, Copy, Debug, Default)]
+struct Outcome {
+    kept: bool,
+    before: bool,
+    after: bool,
 }
 
 impl ContactManager {
@@ -224,34 +231,42 @@ impl ContactManager {
             self.events.finish(&self.contacts);
             return;
         };
-        let before = &mut self.states_before;
-        before.clear();
-        self.contacts.retain(|contact| {
-            if kept(contact).is_none() {
-                events.record_removed(contact);
-                return false;
-            }
-            before.push(EventRecorder::state(contact));
-            true
-        });
-        {
-            use rayon::prelude::*;
-            let contacts = self.contacts.as_mut_slice();
-            pool.install(|| {
-                contacts.par_chunks_mut(NARROW_PHASE_CHUNK).for_each(|chunk| {
-                    for contact in chunk {
-                        let a = bodies.get(contact.body_a.into()).expect("kept above");
-                        let b = bodies.get(contact.body_b.into()).expect("kept above");
+        // On the threads: whether each contact is kept, and its event state before and after its
+        // update; then, on this thread, drop the parted contacts and record the changes in
+        // contact order (a walk that touches only the contacts that changed).
+        use rayon::prelude::*;
+        let outcomes = &mut self.outcomes;
+        outcomes.clear();
+        outcomes.resize(self.contacts.len(), Outcome::default());
+        let contacts = self.contacts.as_mut_slice();
+        pool.install(|| {
+            contacts
+                .par_chunks_mut(NARROW_PHASE_CHUNK)
+                .zip(outcomes.par_chunks_mut(NARROW_PHASE_CHUNK))
+                .for_each(|(chunk, outcomes)| {
+                    for (contact, outcome) in chunk.iter_mut().zip(outcomes) {
+                        let before = EventRecorder::state(contact);
+                        let Some((a, b)) = kept(contact) else {
+                            *outcome = Outcome { kept: false, before, after: before };
+                            continue;
+                        };
                         if a.is_awake() || b.is_awake() {
                             update_manifold(contact, a, b, dt);
                         }
+                        *outcome = Outcome { kept: true, before, after: EventRecorder::state(contact) };
                     }
                 })
-            });
-        }
-        for (contact, &before) in self.contacts.iter().zip(&self.states_before) {
-            self.events.record(contact, before);
-        }
+        });
+        let mut outcomes = self.outcomes.iter();
+        self.contacts.retain(|contact| {
+            let outcome = outcomes.next().expect("one outcome per contact");
+            if !outcome.kept {
+                events.record_removed(contact);
+            } else if outcome.before != outcome.after {
+                events.record(contact, outcome.before);
+            }
+            outcome.kept
+        });
         self.events.finish(&self.contacts);
     }
 
