@@ -8,7 +8,7 @@
 //! | per substep: warm start | apply last substep's accumulated impulses |
 //! | per substep: solve | soft constraints with position bias (push apart / pull together) |
 //! | per substep: integrate positions | `x += h v`; rotation by the exact free-body flow |
-//! | per substep: relax | the same constraints, rigid and without bias, to remove the bias energy |
+//! | per substep: relax | the same constraints, rigid and without bias, to remove the bias energy; each contact's steady load then learns from its impulse |
 //! | per substep: restitution | bounce where the approach was faster than the threshold and has stopped (at the last substep: wherever it was) |
 //! | store impulses | keep impulses for the next step's warm start; joint breaking |
 //!
@@ -303,11 +303,22 @@ impl World {
                     }
                 }
                 data.bodies(thread, |body| body.integrate_position(ctx.h));
-                for _ in 0..ctx.relax_iterations {
+                // The steady loads learn from each contact's final impulse of the substep: in the
+                // last relax sweep, right after the contact's row is solved (nothing else touches
+                // that contact before the next substep; a separate sweep over the contacts cost
+                // another pass through their memory and a barrier).
+                let learn = ctx.steady_load_time > 0.0;
+                for sweep in 0..ctx.relax_iterations {
+                    let last_sweep = sweep + 1 == ctx.relax_iterations;
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, false));
-                    data.contacts_with_bodies(thread, |c, a, b| c.solve(a, b, ctx, false));
+                    data.contacts_with_bodies(thread, |c, a, b| {
+                        c.solve(a, b, ctx, false);
+                        if learn && last_sweep {
+                            c.update_steady_load(ctx.steady_load_time, ctx.h);
+                        }
+                    });
                 }
-                if ctx.steady_load_time > 0.0 {
+                if learn && ctx.relax_iterations == 0 {
                     data.contacts(thread, |c| c.update_steady_load(ctx.steady_load_time, ctx.h));
                 }
                 if restitution {
