@@ -8,7 +8,9 @@
 //! ten neighbours within a node (a tenth of a pile of 2,000 falling balls' step went to those
 //! walks and shifts). The array walks in memory order, drops contacts by compacting in place (the
 //! survivors keep their order), and splits into chunks for the threads without collecting
-//! references first.
+//! references first. (Filling each dropped contact's place with the last contact instead moves
+//! far fewer kilobytes, but scatters the order: contacts next to each other no longer touch
+//! bodies next to each other, and the pile of falling balls ran 6% slower on one thread.)
 //!
 //! The order is a pure function of the history of the world — the pairs made in each step, in
 //! the broad phase's order — so it is the same on every run and for any thread count, and a
