@@ -87,7 +87,6 @@ pub(crate) struct ContactPointInput {
 
 #[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 struct PointConstraint {
-    softness: Softness,
     /// The contact's surface point on each body relative to its centre of mass at the start of
     /// the step, world frame (the two lie on one normal line, `separation` apart).
     r_a0: DVec3,
@@ -147,7 +146,6 @@ impl PointConstraint {
     }
 
     const EMPTY: PointConstraint = PointConstraint {
-        softness: Softness::RIGID_VELOCITY,
         r_a0: DVec3::ZERO,
         r_b0: DVec3::ZERO,
         r_a_local: DVec3::ZERO,
@@ -277,8 +275,42 @@ pub(crate) struct ContactConstraint {
     friction: PatchFriction,
     rolling_impulse: DVec3,
     torsional_impulse: f64,
-    /// The normal rows' `K` at the step start, used while both bodies are still (see `solve`).
-    coupling_start: [[f64; MAX_POINTS]; MAX_POINTS],
+    /// The soft normal rows' stiffness and damping (the same for every point).
+    softness: Softness,
+    /// The normal rows' `K` at the step start, used while both bodies are still (see `solve`):
+    /// the upper triangle, row by row (`K` is symmetric).
+    coupling_start: [f64; COUPLING_ENTRIES],
+}
+
+/// Entries in the upper triangle of a `MAX_POINTS`² symmetric matrix.
+const COUPLING_ENTRIES: usize = MAX_POINTS * (MAX_POINTS + 1) / 2;
+
+/// The upper triangle of the symmetric `k`, row by row.
+fn pack_symmetric(k: &[[f64; MAX_POINTS]; MAX_POINTS]) -> [f64; COUPLING_ENTRIES] {
+    let mut packed = [0.0; COUPLING_ENTRIES];
+    let mut next = 0;
+    for (i, row) in k.iter().enumerate() {
+        for &entry in &row[i..] {
+            packed[next] = entry;
+            next += 1;
+        }
+    }
+    packed
+}
+
+/// The symmetric matrix whose upper triangle `pack_symmetric` stored.
+#[inline]
+fn unpack_symmetric(packed: &[f64; COUPLING_ENTRIES]) -> [[f64; MAX_POINTS]; MAX_POINTS] {
+    let mut k = [[0.0; MAX_POINTS]; MAX_POINTS];
+    let mut next = 0;
+    for i in 0..MAX_POINTS {
+        for j in i..MAX_POINTS {
+            k[i][j] = packed[next];
+            k[j][i] = packed[next];
+            next += 1;
+        }
+    }
+    k
 }
 
 /// Applies the impulses `pᵢ` at levers `(r_aᵢ, r_bᵢ)` (`−pᵢ` to a, `+pᵢ` to b) at once: one
@@ -334,7 +366,8 @@ impl ContactConstraint {
         friction: PatchFriction::EMPTY,
         rolling_impulse: DVec3::ZERO,
         torsional_impulse: 0.0,
-        coupling_start: [[0.0; MAX_POINTS]; MAX_POINTS],
+        softness: Softness::RIGID_VELOCITY,
+        coupling_start: [0.0; COUPLING_ENTRIES],
     };
 
     /// Stage "prepare" for one manifold. `com_a`, `com_b` are the centres of mass at the step
@@ -364,7 +397,8 @@ impl ContactConstraint {
             friction: PatchFriction::EMPTY,
             rolling_impulse: DVec3::ZERO,
             torsional_impulse: 0.0,
-            coupling_start: [[0.0; MAX_POINTS]; MAX_POINTS],
+            softness: Softness::new(hertz, ctx.contact_damping_ratio, ctx.h),
+            coupling_start: [0.0; COUPLING_ENTRIES],
         };
         for (pc, input) in constraint.points.iter_mut().zip(points) {
             // The narrow phase's point is midway between the surfaces; each body's anchor is its
@@ -377,10 +411,8 @@ impl ContactConstraint {
             // along `n`); a round body's anchor is on the line through its centre either way.
             let r_a = input.point_world - 0.5 * input.separation * normal - com_a;
             let r_b = input.point_world + 0.5 * input.separation * normal - com_b;
-            let softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
             let (r_a_local, r_b_local) = round_locals((r_a, r_b), radii, normal, a, b);
             *pc = PointConstraint {
-                softness,
                 r_a0: r_a,
                 r_b0: r_b,
                 r_a_local,
@@ -402,7 +434,7 @@ impl ContactConstraint {
             *offset = (pc.r_a0, pc.r_b0);
             *lever = shared_levers(*offset, constraint.com_offset, a, b);
         }
-        constraint.coupling_start = normal_coupling(&levers[..count], normal, a, b);
+        constraint.coupling_start = pack_symmetric(&normal_coupling(&levers[..count], normal, a, b));
         let (tangent, twist) = if ctx.warm_starting {
             points
                 .iter()
@@ -549,14 +581,18 @@ impl ContactConstraint {
         // the step began), the levers have changed by at most that — `K` by a thousandth for
         // levers of a metre, a few percent for a centimetre-sized body, far below the factor 2
         // that matters — and the step-start `K` serves.
-        let coupling = if still { self.coupling_start } else { normal_coupling(&anchors[..count], n, a, b) };
+        let coupling = if still {
+            unpack_symmetric(&self.coupling_start)
+        } else {
+            normal_coupling(&anchors[..count], n, a, b)
+        };
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let s = separations[i];
             let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
                 // Speculative: allow closing the gap, no more.
                 (s * ctx.inv_h, 1.0, 0.0)
             } else if use_bias {
-                let soft = pc.softness;
+                let soft = self.softness;
                 (
                     (soft.bias_rate * s).max(-ctx.max_contact_push_velocity),
                     soft.mass_scale,
