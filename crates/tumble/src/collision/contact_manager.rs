@@ -165,6 +165,9 @@ impl ContactManager {
     pub fn find_new_contacts(&mut self, bodies: &SlotPool<Body>, joined: impl Fn(BodyId, BodyId) -> bool) {
         let mut new_pairs = std::mem::take(&mut self.new_pairs);
         self.broad_phase.find_new_pairs_into(&mut new_pairs);
+        // Room for the pairs that are new, at once (a first step that makes thousands of contacts
+        // then moves them once, not at every doubling).
+        self.contacts.reserve(new_pairs.iter().filter(|&&pair| !self.contacts.contains(pair)).count());
         for &(key_a, key_b) in &new_pairs {
             if self.contacts.contains((key_a, key_b)) {
                 continue;

@@ -49,6 +49,12 @@ impl ContactStore {
         self.contacts.push(contact);
     }
 
+    /// Makes room for `additional` more contacts.
+    pub fn reserve(&mut self, additional: usize) {
+        self.contacts.reserve(additional);
+        self.pairs.reserve(additional);
+    }
+
     /// Keeps the contacts for which `keep` is true, in their order.
     pub fn retain(&mut self, mut keep: impl FnMut(&mut Contact) -> bool) {
         let pairs = &mut self.pairs;
