@@ -225,7 +225,7 @@ fn main() -> ExitCode {
                             steps,
                             runs: 1,
                             size: None,
-                            substeps: None,
+                            substeps: std::env::var("TUMBLE_SUBSTEPS").ok().and_then(|s| s.parse().ok()),
                             solver: Vec::new(),
                             json: false,
                         };
