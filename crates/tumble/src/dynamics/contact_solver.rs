@@ -370,10 +370,14 @@ impl ContactConstraint {
         coupling_start: [0.0; COUPLING_ENTRIES],
     };
 
-    /// Stage "prepare" for one manifold. `com_a`, `com_b` are the centres of mass at the step
-    /// start; a manifold against a static or kinematic body gets the stiffer static softness.
+    /// Stage "prepare" for one manifold, written over this constraint in place — every field (the
+    /// solver prepares straight into the constraints' array: building each on the stack and
+    /// copying it in moved another kilobyte per manifold). `com_a`, `com_b` are the centres of
+    /// mass at the step start; a manifold against a static or kinematic body gets the stiffer
+    /// static softness.
     #[allow(clippy::too_many_arguments)]
-    pub fn prepare(
+    pub fn prepare_in_place(
+        &mut self,
         (body_a, body_b): (usize, usize),
         (a, b): (&SolverBody, &SolverBody),
         (com_a, com_b): (DVec3, DVec3),
@@ -382,25 +386,24 @@ impl ContactConstraint {
         points: &[ContactPointInput],
         material: ContactMaterial,
         ctx: &StepContext,
-    ) -> ContactConstraint {
+    ) {
         let hertz =
             if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
-        let mut constraint = ContactConstraint {
-            radii,
-            body_a,
-            body_b,
-            normal,
-            com_offset: com_b - com_a,
-            material,
-            points: [PointConstraint::EMPTY; 4],
-            point_count: points.len().min(4),
-            friction: PatchFriction::EMPTY,
-            rolling_impulse: DVec3::ZERO,
-            torsional_impulse: 0.0,
-            softness: Softness::new(hertz, ctx.contact_damping_ratio, ctx.h),
-            coupling_start: [0.0; COUPLING_ENTRIES],
-        };
-        for (pc, input) in constraint.points.iter_mut().zip(points) {
+        self.radii = radii;
+        self.body_a = body_a;
+        self.body_b = body_b;
+        self.normal = normal;
+        self.com_offset = com_b - com_a;
+        self.material = material;
+        self.point_count = points.len().min(4);
+        self.rolling_impulse = DVec3::ZERO;
+        self.torsional_impulse = 0.0;
+        self.softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
+        for (i, pc) in self.points.iter_mut().enumerate() {
+            let Some(input) = points.get(i) else {
+                *pc = PointConstraint::EMPTY;
+                continue;
+            };
             // The narrow phase's point is midway between the surfaces; each body's anchor is its
             // own surface point, half the separation either side. Not the midpoint: the anchor
             // of a corner or face is a material point that turns with its body, and a midpoint
@@ -427,14 +430,14 @@ impl ContactConstraint {
                 bounced: false,
             };
         }
-        let count = constraint.point_count;
+        let count = self.point_count;
         let mut offsets = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
         let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
-        for ((offset, lever), pc) in offsets.iter_mut().zip(&mut levers).zip(&constraint.points[..count]) {
+        for ((offset, lever), pc) in offsets.iter_mut().zip(&mut levers).zip(&self.points[..count]) {
             *offset = (pc.r_a0, pc.r_b0);
-            *lever = shared_levers(*offset, constraint.com_offset, a, b);
+            *lever = shared_levers(*offset, self.com_offset, a, b);
         }
-        constraint.coupling_start = pack_symmetric(&normal_coupling(&levers[..count], normal, a, b));
+        self.coupling_start = pack_symmetric(&normal_coupling(&levers[..count], normal, a, b));
         let (tangent, twist) = if ctx.warm_starting {
             points
                 .iter()
@@ -442,17 +445,8 @@ impl ContactConstraint {
         } else {
             (DVec3::ZERO, 0.0)
         };
-        constraint.friction = PatchFriction::prepare(
-            a,
-            b,
-            &offsets[..count],
-            radii,
-            normal,
-            constraint.com_offset,
-            tangent,
-            twist,
-        );
-        constraint
+        self.friction =
+            PatchFriction::prepare(a, b, &offsets[..count], radii, normal, self.com_offset, tangent, twist);
     }
 
     fn apply(a: &mut SolverBody, b: &mut SolverBody, r_a: DVec3, r_b: DVec3, p: DVec3) {

@@ -28,7 +28,8 @@ fn still_rows_match_the_exact_rows_to_second_order() {
         .collect();
     let material =
         ContactMaterial { friction: 0.5, restitution: 0.0, rolling_friction: 0.0, torsional_friction: 0.0 };
-    let constraint = ContactConstraint::prepare(
+    let mut constraint = ContactConstraint::EMPTY;
+    constraint.prepare_in_place(
         (0, 1),
         (&a, &b),
         (com_a, com_b),

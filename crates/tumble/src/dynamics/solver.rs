@@ -260,7 +260,9 @@ impl World {
             run_on_threads(pool, |thread| {
                 for input in thread.share(0..count) {
                     let contact = &store[solved[input] as usize];
-                    coloured.put(thread, input, prepare_contact(contact, &bodies, world_bodies, &ctx));
+                    coloured.with_slot(thread, input, |slot| {
+                        prepare_contact(slot, contact, &bodies, world_bodies, &ctx)
+                    });
                 }
             });
         }
@@ -405,13 +407,14 @@ fn takes_part(contact: &Contact, bodies: &[SolverBody], world_bodies: &SlotPool<
         && world_bodies.iter_slot(ib).is_some()
 }
 
-/// The solver's rows of one contact that `takes_part`.
+/// The solver's rows of one contact that `takes_part`, written over `constraint`.
 fn prepare_contact(
+    constraint: &mut ContactConstraint,
     contact: &Contact,
     bodies: &[SolverBody],
     world_bodies: &SlotPool<Body>,
     ctx: &StepContext,
-) -> ContactConstraint {
+) {
     let (ia, ib) = (contact.body_a.index(), contact.body_b.index());
     let (Some(manifold), Some(a), Some(b)) =
         (contact.manifold.as_ref(), world_bodies.iter_slot(ia), world_bodies.iter_slot(ib))
@@ -433,7 +436,7 @@ fn prepare_contact(
             impulse: *impulse,
         };
     }
-    ContactConstraint::prepare(
+    constraint.prepare_in_place(
         (ia, ib),
         (&bodies[ia], &bodies[ib]),
         (a.com_world(), b.com_world()),
@@ -442,7 +445,7 @@ fn prepare_contact(
         &points[..manifold.len()],
         contact.material,
         ctx,
-    )
+    );
 }
 
 /// Calls `f` for every active joint with its two solver bodies, in joint-slot order.

@@ -242,13 +242,14 @@ impl<'a> ColouredContacts<'a> {
         ColouredContacts { contacts: Shared::new(contacts), colouring }
     }
 
-    /// Stores the constraint of input `input`, which must be in `thread`'s share of the inputs.
-    pub fn put(&self, thread: SolverThread, input: usize, constraint: ContactConstraint) {
+    /// Calls `f` on the place (in colour order) of the constraint of input `input`, which must be
+    /// in `thread`'s share of the inputs.
+    pub fn with_slot(&self, thread: SolverThread, input: usize, f: impl FnOnce(&mut ContactConstraint)) {
         assert!(thread.share(0..self.contacts.len).contains(&input), "input outside this thread's share");
         let slot = self.colouring.slot(input);
         // SAFETY: the shares of the threads are disjoint, and `slot` is a permutation, so no other
         // thread writes this slot (nor reads it until the threads have finished).
-        unsafe { self.contacts.slice(slot..slot + 1)[0] = constraint };
+        f(unsafe { &mut self.contacts.slice(slot..slot + 1)[0] });
     }
 }
 
