@@ -31,9 +31,73 @@
 //! it; the contact let a corner pass 4 cm into a wall in one substep, and in the relax pass took
 //! back more impulse than the target allowed, which added energy — docs/solver.md, "Fast spinning
 //! bodies".)
+//!
+//! `normal_coupling` builds `K`; a still manifold keeps its step-start `K` as the upper triangle
+//! (`pack_symmetric`: `K` is built exactly symmetric, so nothing is lost).
+
+use crate::dynamics::solver_body::SolverBody;
+use crate::math::DVec3;
 
 /// At most four points per manifold.
 pub(crate) const MAX_POINTS: usize = 4;
+
+/// `K = J M⁻¹ Jᵀ` of normal rows along `n` acting at the shared `levers` (body a's and b's
+/// offsets): row `i` against row `j` through the two bodies, with the inverse inertias as they are
+/// now.
+pub(crate) fn normal_coupling(
+    levers: &[(DVec3, DVec3)],
+    n: DVec3,
+    a: &SolverBody,
+    b: &SolverBody,
+) -> [[f64; MAX_POINTS]; MAX_POINTS] {
+    let mut k = [[0.0; MAX_POINTS]; MAX_POINTS];
+    let mut arms = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
+    for (arm, (r_a, r_b)) in arms.iter_mut().zip(levers) {
+        *arm = (r_a.cross(n), r_b.cross(n));
+    }
+    let count = levers.len().min(MAX_POINTS);
+    for i in 0..count {
+        let (ai, bi) = arms[i];
+        let (wa, wb) = (a.inv_inertia * ai, b.inv_inertia * bi);
+        for j in i..count {
+            let (aj, bj) = arms[j];
+            k[i][j] = a.inv_mass + b.inv_mass + aj.dot(wa) + bj.dot(wb);
+            k[j][i] = k[i][j];
+        }
+    }
+    k
+}
+
+/// Entries in the upper triangle of a `MAX_POINTS`² symmetric matrix.
+pub(crate) const COUPLING_ENTRIES: usize = MAX_POINTS * (MAX_POINTS + 1) / 2;
+
+/// The upper triangle of the symmetric `k`, row by row.
+pub(crate) fn pack_symmetric(k: &[[f64; MAX_POINTS]; MAX_POINTS]) -> [f64; COUPLING_ENTRIES] {
+    let mut packed = [0.0; COUPLING_ENTRIES];
+    let mut next = 0;
+    for (i, row) in k.iter().enumerate() {
+        for &entry in &row[i..] {
+            packed[next] = entry;
+            next += 1;
+        }
+    }
+    packed
+}
+
+/// The symmetric matrix whose upper triangle `pack_symmetric` stored.
+#[inline]
+pub(crate) fn unpack_symmetric(packed: &[f64; COUPLING_ENTRIES]) -> [[f64; MAX_POINTS]; MAX_POINTS] {
+    let mut k = [[0.0; MAX_POINTS]; MAX_POINTS];
+    let mut next = 0;
+    for i in 0..MAX_POINTS {
+        for j in i..MAX_POINTS {
+            k[i][j] = packed[next];
+            k[j][i] = packed[next];
+            next += 1;
+        }
+    }
+    k
+}
 
 /// A dense system `(K + Γ) Δλ = rhs` for up to four rows.
 #[derive(Clone, Copy, Debug, Default)]

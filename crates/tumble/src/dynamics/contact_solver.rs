@@ -31,7 +31,9 @@
 //! Accumulated impulses are kept per point (matched by feature id across steps) and applied again
 //! at every substep's warm start.
 
-use crate::dynamics::contact_block::{NormalBlock, MAX_POINTS};
+use crate::dynamics::contact_block::{
+    normal_coupling, pack_symmetric, unpack_symmetric, NormalBlock, COUPLING_ENTRIES, MAX_POINTS,
+};
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
 use crate::dynamics::softness::Softness;
@@ -229,33 +231,6 @@ pub(crate) fn shared_levers(
     (r_a + t * d, r_b - (1.0 - t) * d)
 }
 
-/// `K = J M⁻¹ Jᵀ` of normal rows along `n` acting at the shared `levers` (body a's and b's
-/// offsets): row `i` against row `j` through the two bodies, with the inverse inertias as they are
-/// now.
-pub(crate) fn normal_coupling(
-    levers: &[(DVec3, DVec3)],
-    n: DVec3,
-    a: &SolverBody,
-    b: &SolverBody,
-) -> [[f64; MAX_POINTS]; MAX_POINTS] {
-    let mut k = [[0.0; MAX_POINTS]; MAX_POINTS];
-    let mut arms = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
-    for (arm, (r_a, r_b)) in arms.iter_mut().zip(levers) {
-        *arm = (r_a.cross(n), r_b.cross(n));
-    }
-    let count = levers.len().min(MAX_POINTS);
-    for i in 0..count {
-        let (ai, bi) = arms[i];
-        let (wa, wb) = (a.inv_inertia * ai, b.inv_inertia * bi);
-        for j in i..count {
-            let (aj, bj) = arms[j];
-            k[i][j] = a.inv_mass + b.inv_mass + aj.dot(wa) + bj.dot(wb);
-            k[j][i] = k[i][j];
-        }
-    }
-    k
-}
-
 /// A manifold prepared for the solver.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ContactConstraint {
@@ -280,37 +255,6 @@ pub(crate) struct ContactConstraint {
     /// The normal rows' `K` at the step start, used while both bodies are still (see `solve`):
     /// the upper triangle, row by row (`K` is symmetric).
     coupling_start: [f64; COUPLING_ENTRIES],
-}
-
-/// Entries in the upper triangle of a `MAX_POINTS`² symmetric matrix.
-const COUPLING_ENTRIES: usize = MAX_POINTS * (MAX_POINTS + 1) / 2;
-
-/// The upper triangle of the symmetric `k`, row by row.
-fn pack_symmetric(k: &[[f64; MAX_POINTS]; MAX_POINTS]) -> [f64; COUPLING_ENTRIES] {
-    let mut packed = [0.0; COUPLING_ENTRIES];
-    let mut next = 0;
-    for (i, row) in k.iter().enumerate() {
-        for &entry in &row[i..] {
-            packed[next] = entry;
-            next += 1;
-        }
-    }
-    packed
-}
-
-/// The symmetric matrix whose upper triangle `pack_symmetric` stored.
-#[inline]
-fn unpack_symmetric(packed: &[f64; COUPLING_ENTRIES]) -> [[f64; MAX_POINTS]; MAX_POINTS] {
-    let mut k = [[0.0; MAX_POINTS]; MAX_POINTS];
-    let mut next = 0;
-    for i in 0..MAX_POINTS {
-        for j in i..MAX_POINTS {
-            k[i][j] = packed[next];
-            k[j][i] = packed[next];
-            next += 1;
-        }
-    }
-    k
 }
 
 /// Applies the impulses `pᵢ` at levers `(r_aᵢ, r_bᵢ)` (`−pᵢ` to a, `+pᵢ` to b) at once: one
