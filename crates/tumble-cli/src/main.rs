@@ -225,7 +225,7 @@ fn main() -> ExitCode {
                             steps,
                             runs: 1,
                             size: None,
-                            substeps: std::env::var("TUMBLE_SUBSTEPS").ok().and_then(|s| s.parse().ok()),
+                            substeps: None,
                             solver: Vec::new(),
                             json: false,
                         };
