@@ -165,13 +165,11 @@ impl ContactManager {
     pub fn find_new_contacts(&mut self, bodies: &SlotPool<Body>, joined: impl Fn(BodyId, BodyId) -> bool) {
         let mut new_pairs = std::mem::take(&mut self.new_pairs);
         self.broad_phase.find_new_pairs_into(&mut new_pairs);
-        // Room for the pairs that are new, at once (a first step that makes thousands of contacts
-        // then moves them once, not at every doubling).
-        self.contacts.reserve(new_pairs.iter().filter(|&&pair| !self.contacts.contains(pair)).count());
+        // Only the pairs without a contact yet, and room for them at once (a first step that
+        // makes thousands of contacts then moves them once, not at every doubling).
+        new_pairs.retain(|&pair| !self.contacts.contains(pair));
+        self.contacts.reserve(new_pairs.len());
         for &(key_a, key_b) in &new_pairs {
-            if self.contacts.contains((key_a, key_b)) {
-                continue;
-            }
             let (slot_a, child_a) = unpack(self.broad_phase.user_data(key_a));
             let (slot_b, child_b) = unpack(self.broad_phase.user_data(key_b));
             if slot_a == slot_b {
