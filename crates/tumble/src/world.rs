@@ -170,6 +170,12 @@ fn check_solver_settings(s: &SolverSettings) -> Result<(), WorldError> {
     if s.relax_iterations > 1000 {
         return bad(format!("relax_iterations must be at most 1000, got {}", s.relax_iterations));
     }
+    if s.joint_projection_iterations > 1000 {
+        return bad(format!(
+            "joint_projection_iterations must be at most 1000, got {}",
+            s.joint_projection_iterations
+        ));
+    }
     for (what, v) in [
         ("joint_hertz", s.joint_hertz),
         ("joint_damping_ratio", s.joint_damping_ratio),
@@ -178,6 +184,7 @@ fn check_solver_settings(s: &SolverSettings) -> Result<(), WorldError> {
         ("max_contact_push_velocity", s.max_contact_push_velocity),
         ("restitution_threshold", s.restitution_threshold),
         ("steady_load_time", s.steady_load_time),
+        ("joint_projection_tolerance", s.joint_projection_tolerance),
     ] {
         if !v.is_finite() || v < 0.0 {
             return bad(format!("{what} must be finite and >= 0, got {v}"));

@@ -85,6 +85,12 @@ impl Checker<'_> {
         solver.substeps = count("substeps", &w.substeps, 1, solver.substeps)?;
         solver.solve_iterations = count("solve_iterations", &w.solve_iterations, 1, solver.solve_iterations)?;
         solver.relax_iterations = count("relax_iterations", &w.relax_iterations, 0, solver.relax_iterations)?;
+        solver.joint_projection_iterations = count(
+            "joint_projection_iterations",
+            &w.joint_projection_iterations,
+            0,
+            solver.joint_projection_iterations,
+        )?;
         let non_negative = |v: f64| v >= 0.0;
         for (key, value, target) in [
             ("contact_hertz", &w.contact_hertz, &mut solver.contact_hertz),
@@ -92,6 +98,11 @@ impl Checker<'_> {
             ("joint_hertz", &w.joint_hertz, &mut solver.joint_hertz),
             ("joint_damping_ratio", &w.joint_damping_ratio, &mut solver.joint_damping_ratio),
             ("steady_load_time", &w.steady_load_time, &mut solver.steady_load_time),
+            (
+                "joint_projection_tolerance",
+                &w.joint_projection_tolerance,
+                &mut solver.joint_projection_tolerance,
+            ),
         ] {
             *target = self.number_or(at, key, value, *target, non_negative, ">= 0")?;
         }

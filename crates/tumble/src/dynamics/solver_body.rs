@@ -246,6 +246,16 @@ impl SolverBody {
         }
     }
 
+    /// Moves the body by `shift` and turns it by the rotation vector `turn` (both world frame),
+    /// without touching its velocities: the joint trees' position projection.
+    pub fn displace(&mut self, shift: DVec3, turn: DVec3) {
+        self.dp += shift;
+        self.set_orientation((DQuat::from_scaled_axis(turn) * self.q).normalize());
+        if !self.isotropic {
+            self.refresh_inverse_inertia();
+        }
+    }
+
     /// All `substeps` substeps of bodies no constraint acts on, at once, up to four side by side:
     /// the velocity and position stages in turn — and when no torque or angular damping acts
     /// between them, the rotation as one merged free flow (`free_rotation_flow_steps_lanes`: the

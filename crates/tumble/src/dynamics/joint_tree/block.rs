@@ -137,14 +137,6 @@ impl Ldlt {
         }
     }
 
-    /// `A⁻¹ b` for a block `b` with `dim` rows: the same three sweeps on all columns at once.
-    #[cfg(test)]
-    pub fn solve_block(&self, b: &Block) -> Block {
-        let mut x = Block::zero(0, 0);
-        self.solve_block_into(b, &mut x);
-        x
-    }
-
     /// `x = A⁻¹ b`, written over `x` (only the entries of `b`'s size).
     pub fn solve_block_into(&self, b: &Block, x: &mut Block) {
         debug_assert_eq!(b.rows, self.dim);

@@ -34,9 +34,24 @@ use crate::dynamics::joint::equality::EqualityRows;
 use crate::dynamics::joint::Joint;
 use crate::dynamics::solver_body::SolverBody;
 use crate::id::SlotPool;
+use crate::math::DVec3;
 use block::{Block, BlockVector, Ldlt, MAX_DIM};
 
 const NONE: u32 = u32::MAX;
+
+/// The largest turn of any tree body in a substep, rad, up to which the position projection's
+/// first step reuses the velocity solve's factors.
+const CHORD_TURN: f64 = 0.1;
+
+/// How many times the position projection halves a step that made the error larger.
+const MAX_HALVINGS: u32 = 4;
+
+/// What a solve makes of the rows: their velocities `−β C`, or their position errors zero.
+#[derive(Clone, Copy, Debug)]
+enum Target {
+    Velocity { bias_rate: f64 },
+    Position,
+}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum NodeKind {
@@ -63,6 +78,8 @@ struct Node {
     factor: Ldlt,
     /// Right-hand side, then solution.
     x: BlockVector,
+    /// For a body: its last displacement in the position projection (shift, turn).
+    step: [f64; 6],
 }
 
 impl Node {
@@ -77,6 +94,7 @@ impl Node {
             multiplier: Block::zero(0, 0),
             factor: Ldlt::EMPTY,
             x: [0.0; MAX_DIM],
+            step: [0.0; 6],
         }
     }
 }
@@ -99,6 +117,8 @@ pub(crate) struct JointTrees {
     /// Breadth-first order of the build: (node, parent position in this list).
     breadth_first: Vec<(NodeKind, u32)>,
     joint_visited: Vec<bool>,
+    /// The nodes hold the factors of their blocks as last assembled.
+    factored: bool,
 }
 
 /// Whether a solver body is one of the figure's moving bodies (finite, positive mass).
@@ -127,6 +147,7 @@ impl JointTrees {
     /// Builds this step's trees from the joints being solved, and marks each joint `in_tree`.
     pub fn build(&mut self, joints: &mut SlotPool<Joint>, bodies: &[SolverBody]) {
         self.nodes.clear();
+        self.factored = false;
         self.tree_joints.clear();
         self.breadth_first.clear();
         let ground = bodies.len() as u32;
@@ -282,14 +303,15 @@ impl JointTrees {
         if self.nodes.is_empty() {
             return;
         }
-        self.assemble(joints, bodies, bias_rate);
-        self.factor_and_solve();
+        self.assemble(joints, bodies, Target::Velocity { bias_rate }, true);
+        self.factor();
+        self.solve_factored();
         for node in &self.nodes {
             match node.kind {
                 NodeKind::Body { slot } => {
                     let body = &mut bodies[slot as usize];
-                    body.v += crate::math::DVec3::new(node.x[0], node.x[1], node.x[2]);
-                    body.w += crate::math::DVec3::new(node.x[3], node.x[4], node.x[5]);
+                    body.v += DVec3::new(node.x[0], node.x[1], node.x[2]);
+                    body.w += DVec3::new(node.x[3], node.x[4], node.x[5]);
                 }
                 NodeKind::Joint { slot } => {
                     let joint = joints_slot_mut(joints, slot);
@@ -303,14 +325,99 @@ impl JointTrees {
         }
     }
 
-    /// Fills every node's diagonal block, coupling block and right-hand side for the bodies' state
-    /// now.
-    fn assemble(&mut self, joints: &SlotPool<Joint>, bodies: &[SolverBody], bias_rate: f64) {
+    /// Moves the trees' bodies until every tree row's position error is at most `tolerance`, by
+    /// at most `max_iterations` Newton steps: each the smallest mass-weighted displacement
+    /// `Δx = M⁻¹Jᵀλ` with `J Δx = −C` (post-stabilisation, Cline & Pai 2003). Velocities are left
+    /// as they are. Run after each substep's position stage, it takes out the drift the substep
+    /// made instead of feeding it back through the velocities over the next substeps
+    /// (`docs/joint-tree.md`, "Holding the positions").
+    ///
+    /// While every tree body turned by less than [`CHORD_TURN`] in the substep (`h |ω|`), the
+    /// first step reuses the factors of the substep's velocity solve, whose Jacobians are off by
+    /// that turn: a chord step, which takes out all but about `h |ω|` of the drift without
+    /// refactoring, and is not counted. A step that leaves the largest error larger than it was
+    /// is halved (up to [`MAX_HALVINGS`] times): far from the constraint surface a full step can
+    /// overshoot, and a projection that makes things worse feeds a diverging loop.
+    pub fn project_positions(
+        &mut self,
+        joints: &SlotPool<Joint>,
+        bodies: &mut [SolverBody],
+        tolerance: f64,
+        max_iterations: u32,
+        h: f64,
+    ) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let turned = |node: &Node| match node.kind {
+            NodeKind::Body { slot } => h * bodies[slot as usize].w.length(),
+            NodeKind::Joint { .. } => 0.0,
+        };
+        let mut chord = self.factored && self.nodes.iter().all(|node| turned(node) < CHORD_TURN);
+        let mut budget = max_iterations;
+        let (mut before, mut halvings) = (f64::INFINITY, 0);
+        loop {
+            let error = self.assemble(joints, bodies, Target::Position, false);
+            if error > before && halvings < MAX_HALVINGS {
+                halvings += 1;
+                self.take_step(bodies, -0.5);
+                continue;
+            }
+            if error <= tolerance {
+                return;
+            }
+            if !std::mem::take(&mut chord) {
+                if budget == 0 {
+                    return;
+                }
+                budget -= 1;
+                self.assemble(joints, bodies, Target::Position, true);
+                self.factor();
+            }
+            self.solve_factored();
+            for node in &mut self.nodes {
+                let [x, y, z, ax, ay, az, ..] = node.x;
+                node.step = [x, y, z, ax, ay, az];
+            }
+            self.take_step(bodies, 1.0);
+            (before, halvings) = (error, 0);
+        }
+    }
+
+    /// Moves every tree body by `fraction` of its node's `step`, and scales the steps by
+    /// `|fraction|` (so that −½ takes back half of the step just taken and leaves the other half
+    /// as the step).
+    fn take_step(&mut self, bodies: &mut [SolverBody], fraction: f64) {
+        for node in &mut self.nodes {
+            if let NodeKind::Body { slot } = node.kind {
+                let [x, y, z, ax, ay, az] = node.step;
+                bodies[slot as usize]
+                    .displace(fraction * DVec3::new(x, y, z), fraction * DVec3::new(ax, ay, az));
+                if fraction != 1.0 {
+                    node.step = node.step.map(|v| v * fraction.abs());
+                }
+            }
+        }
+    }
+
+    /// Fills every node's right-hand side and, with `matrix`, its diagonal and coupling blocks,
+    /// for the bodies' state now; returns the largest position error of any row.
+    fn assemble(
+        &mut self,
+        joints: &SlotPool<Joint>,
+        bodies: &[SolverBody],
+        target: Target,
+        matrix: bool,
+    ) -> f64 {
+        let mut largest_error = 0.0_f64;
         for i in 0..self.nodes.len() {
             let node = &mut self.nodes[i];
             node.x = [0.0; MAX_DIM];
             match node.kind {
                 NodeKind::Body { slot } => {
+                    if !matrix {
+                        continue;
+                    }
                     let (mass, inertia) =
                         bodies[slot as usize].mass_matrix().expect("tree bodies have a mass matrix");
                     let mut d = Block::zero(6, 6);
@@ -323,7 +430,6 @@ impl JointTrees {
                     node.diagonal = d;
                 }
                 NodeKind::Joint { slot } => {
-                    node.diagonal = Block::zero(node.dim, node.dim);
                     let joint = joints.iter_slot(slot as usize).expect("tree joints are live");
                     let (ia, ib) = (joint.body_a.index(), joint.body_b.index());
                     let rows = joint
@@ -331,14 +437,27 @@ impl JointTrees {
                         .expect("tree joints have equality rows");
                     debug_assert_eq!(rows.len, node.dim);
                     for k in 0..rows.len {
-                        let cdot = rows.rows[k].velocity(&bodies[ia], &bodies[ib]);
-                        node.x[k] = -(cdot + bias_rate * rows.error[k]);
+                        largest_error = largest_error.max(rows.error[k].abs());
+                        node.x[k] = match target {
+                            Target::Velocity { bias_rate } => {
+                                let cdot = rows.rows[k].velocity(&bodies[ia], &bodies[ib]);
+                                -(cdot + bias_rate * rows.error[k])
+                            }
+                            Target::Position => -rows.error[k],
+                        };
                     }
-                    self.couple(i, ia, &rows, -1.0);
-                    self.couple(i, ib, &rows, 1.0);
+                    if matrix {
+                        node.diagonal = Block::zero(node.dim, node.dim);
+                        self.couple(i, ia, &rows, -1.0);
+                        self.couple(i, ib, &rows, 1.0);
+                    }
                 }
             }
         }
+        if matrix {
+            self.factored = false;
+        }
+        largest_error
     }
 
     /// Writes the coupling between joint node `j` and the node of body `slot` (if it moves): the
@@ -379,8 +498,9 @@ impl JointTrees {
         }
     }
 
-    /// Block `LDLᵀ` leaves first, then forward substitution, diagonal solves and back substitution.
-    fn factor_and_solve(&mut self) {
+    /// Block `LDLᵀ`, leaves first: each node's factor and elimination multiplier, and its
+    /// parent's diagonal block updated.
+    fn factor(&mut self) {
         let n = self.nodes.len();
         for i in 0..n {
             let parent = self.nodes[i].parent;
@@ -389,9 +509,22 @@ impl JointTrees {
             node.factor.factor_from(&node.diagonal);
             if parent != NONE {
                 node.factor.solve_block_into(&node.coupling, &mut node.multiplier);
-                let p = &mut rest[parent as usize - i - 1];
-                p.diagonal.sub_transpose_mul(&node.coupling, &node.multiplier);
-                node.multiplier.sub_transpose_mul_vector(&node.x, &mut p.x);
+                rest[parent as usize - i - 1].diagonal.sub_transpose_mul(&node.coupling, &node.multiplier);
+            }
+        }
+        self.factored = true;
+    }
+
+    /// Solves for the right-hand sides in the nodes' `x` with the factors: forward substitution
+    /// (leaves first), the diagonal blocks, back substitution (roots first).
+    fn solve_factored(&mut self) {
+        let n = self.nodes.len();
+        for i in 0..n {
+            let parent = self.nodes[i].parent;
+            if parent != NONE {
+                let (done, rest) = self.nodes.split_at_mut(i + 1);
+                let node = &done[i];
+                node.multiplier.sub_transpose_mul_vector(&node.x, &mut rest[parent as usize - i - 1].x);
             }
         }
         for node in self.nodes.iter_mut() {
@@ -424,6 +557,109 @@ mod tests {
     use crate::math::{DQuat, DVec3};
     use crate::shape::{Cuboid, Shape};
     use crate::{BodyDef, BodyKind, World};
+
+    /// The solver bodies of a world's bodies, its joints prepared for a step of 1/60 s, and the
+    /// trees built from them.
+    fn prepared(world: &mut World) -> (StepContext, Vec<SolverBody>, JointTrees) {
+        let ctx = StepContext::new(1.0 / 60.0, world.gravity, &world.solver_settings);
+        let mut bodies = vec![SolverBody::FIXED; world.bodies.capacity_index()];
+        for (id, b) in world.bodies.iter() {
+            bodies[id.index()] = SolverBody::from_body(b);
+        }
+        for (_, j) in world.joints.iter_mut() {
+            j.solving = true;
+            let (a, b) =
+                (world.bodies.get(j.body_a.into()).unwrap(), world.bodies.get(j.body_b.into()).unwrap());
+            j.prepare(a, b, &ctx);
+        }
+        let mut trees = JointTrees::default();
+        trees.build(&mut world.joints, &bodies);
+        (ctx, bodies, trees)
+    }
+
+    /// A free figure (no joint to the ground) pulled apart by centimetres and turned: the
+    /// projection puts every joint back within the tolerance, leaves the velocities alone, and
+    /// keeps the figure's centre of mass where it was (the joints' linear rows push its bodies
+    /// equally and oppositely, so `Σ m Δx = 0` in every Newton step).
+    #[test]
+    fn projection_closes_the_joints_and_keeps_the_centre_of_mass() {
+        let mut world = World::new(Default::default()).unwrap();
+        let cuboid = |h: DVec3| Some(Shape::Cuboid(Cuboid::new(h).unwrap()));
+        let mut ids = vec![];
+        for (k, (half, density)) in [
+            (DVec3::new(0.2, 0.1, 0.1), 1000.0),
+            (DVec3::splat(0.1), 5000.0),
+            (DVec3::new(0.1, 0.3, 0.1), 200.0),
+        ]
+        .into_iter()
+        .chain([(DVec3::splat(0.15), 1000.0)])
+        .enumerate()
+        {
+            let id = world
+                .add_body(BodyDef {
+                    shape: cuboid(half),
+                    density,
+                    position: DVec3::new(0.5 * k as f64, 0.0, 2.0),
+                    orientation: DQuat::from_rotation_z(0.2 * k as f64),
+                    ..Default::default()
+                })
+                .unwrap();
+            ids.push(id);
+        }
+        let axis = DVec3::new(0.0, 1.0, 0.3);
+        for (k, kind) in [
+            JointKind::Ball(BallJoint::new()),
+            JointKind::Hinge(HingeJoint::default()),
+            JointKind::Fixed(FixedJoint::new()),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let anchor = DVec3::new(0.5 * k as f64 + 0.25, 0.0, 2.0);
+            world.add_joint(JointDef::new(ids[k], ids[k + 1], anchor, kind).with_axis(axis)).unwrap();
+        }
+        for (k, &id) in ids.iter().enumerate() {
+            let k = k as f64;
+            world.set_linear_velocity(id, DVec3::new(k, -1.0, 0.5)).unwrap();
+            world.set_angular_velocity(id, DVec3::new(0.3, k, -2.0)).unwrap();
+        }
+
+        let (ctx, mut bodies, mut trees) = prepared(&mut world);
+        assert!(world.joints.iter().all(|(_, j)| j.in_tree));
+
+        // Pull the figure apart: shifts of a few centimetres and turns of a few degrees.
+        for (k, &id) in ids.iter().enumerate() {
+            let k = k as f64;
+            let body = &mut bodies[id.index()];
+            body.displace(DVec3::new(0.02 * k, -0.03, 0.01 * k * k), DVec3::new(0.05, -0.04 * k, 0.03));
+        }
+        let centre = |bodies: &[SolverBody]| {
+            let mass = |id: crate::BodyId| 1.0 / bodies[id.index()].inv_mass;
+            let total: f64 = ids.iter().map(|&id| mass(id)).sum();
+            ids.iter().map(|&id| mass(id) * bodies[id.index()].dp).sum::<DVec3>() / total
+        };
+        let largest_error = |bodies: &[SolverBody]| {
+            world
+                .joints
+                .iter()
+                .map(|(_, j)| {
+                    let rows = j.equality_rows(&bodies[j.body_a.index()], &bodies[j.body_b.index()]).unwrap();
+                    rows.error[..rows.len].iter().fold(0.0_f64, |m, e| m.max(e.abs()))
+                })
+                .fold(0.0, f64::max)
+        };
+        let (centre_before, error_before) = (centre(&bodies), largest_error(&bodies));
+        let velocities: Vec<_> = bodies.iter().map(|b| (b.v, b.w)).collect();
+        assert!(error_before > 0.02, "the figure starts apart: {error_before}");
+
+        let tolerance = 1e-9;
+        trees.project_positions(&world.joints, &mut bodies, tolerance, 8, ctx.h);
+        let error_after = largest_error(&bodies);
+        assert!(error_after <= tolerance, "largest error {error_before:e} -> {error_after:e}");
+        let moved = (centre(&bodies) - centre_before).length();
+        assert!(moved < 1e-14, "the centre of mass moved by {moved:e} m");
+        assert!(bodies.iter().zip(&velocities).all(|(b, &(v, w))| b.v == v && b.w == w));
+    }
 
     /// A branching figure hung from the ground, with a loop and a second joint to the ground:
     /// the tree takes exactly the joints that keep it a forest, and one solve makes every tree
@@ -471,19 +707,7 @@ mod tests {
             world.bodies.get_mut(id.into()).unwrap().state.com_world += DVec3::new(0.001 * k, -0.002, 0.0005);
         }
 
-        let ctx = StepContext::new(1.0 / 60.0, world.gravity, &world.solver_settings);
-        let mut bodies = vec![SolverBody::FIXED; world.bodies.capacity_index()];
-        for (id, b) in world.bodies.iter() {
-            bodies[id.index()] = SolverBody::from_body(b);
-        }
-        for (_, j) in world.joints.iter_mut() {
-            j.solving = true;
-            let (a, b) =
-                (world.bodies.get(j.body_a.into()).unwrap(), world.bodies.get(j.body_b.into()).unwrap());
-            j.prepare(a, b, &ctx);
-        }
-        let mut trees = JointTrees::default();
-        trees.build(&mut world.joints, &bodies);
+        let (_, mut bodies, mut trees) = prepared(&mut world);
         let in_tree: Vec<bool> = world.joints.iter().map(|(_, j)| j.in_tree).collect();
         assert_eq!(
             in_tree,
