@@ -26,17 +26,35 @@ impl Block {
         Block { rows, cols, m: [[0.0; MAX_DIM]; MAX_DIM] }
     }
 
+    /// Makes the block a zero `rows × cols` block. (Only that corner is cleared: every block is
+    /// zero outside its size, and a node's blocks keep their sizes.)
+    pub fn set_zero(&mut self, rows: usize, cols: usize) {
+        debug_assert!(self.m.iter().enumerate().all(|(i, row)| row
+            .iter()
+            .enumerate()
+            .all(|(j, &v)| v == 0.0 || (i < self.rows && j < self.cols))));
+        (self.rows, self.cols) = (rows, cols);
+        for row in self.m.iter_mut().take(rows) {
+            *row = [0.0; MAX_DIM];
+        }
+    }
+
+    // The products below run their column loops over all six columns: blocks are zero outside
+    // their size, so the extra terms add exact zeros, and loops of a fixed length unroll and
+    // vectorise where loops to `cols` did not.
+
     /// `self −= aᵀ b` (`a` is `k × rows`, `b` is `k × cols`).
     pub fn sub_transpose_mul(&mut self, a: &Block, b: &Block) {
         debug_assert!(a.rows == b.rows && a.cols == self.rows && b.cols == self.cols);
         for k in 0..a.rows {
+            let (a_row, b_row) = (&a.m[k], &b.m[k]);
             for i in 0..self.rows {
-                let aki = a.m[k][i];
+                let aki = a_row[i];
                 if aki == 0.0 {
                     continue;
                 }
-                for j in 0..self.cols {
-                    self.m[i][j] -= aki * b.m[k][j];
+                for j in 0..MAX_DIM {
+                    self.m[i][j] -= aki * b_row[j];
                 }
             }
         }
@@ -45,8 +63,8 @@ impl Block {
     /// `y −= selfᵀ x` (`x` has `rows` entries, `y` has `cols`).
     pub fn sub_transpose_mul_vector(&self, x: &BlockVector, y: &mut BlockVector) {
         for (k, xk) in x.iter().enumerate().take(self.rows) {
-            for (j, yj) in y.iter_mut().enumerate().take(self.cols) {
-                *yj -= self.m[k][j] * xk;
+            for j in 0..MAX_DIM {
+                y[j] -= self.m[k][j] * xk;
             }
         }
     }
@@ -55,7 +73,11 @@ impl Block {
     pub fn sub_mul_vector(&self, x: &BlockVector, y: &mut BlockVector) {
         for (i, yi) in y.iter_mut().enumerate().take(self.rows) {
             let row = &self.m[i];
-            *yi -= (0..self.cols).map(|j| row[j] * x[j]).sum::<f64>();
+            let mut sum = 0.0;
+            for j in 0..MAX_DIM {
+                sum += row[j] * x[j];
+            }
+            *yi -= sum;
         }
     }
 }
@@ -143,22 +165,23 @@ impl Ldlt {
         let (n, cols) = (self.dim, b.cols);
         x.rows = b.rows;
         x.cols = cols;
+        // All six columns (see the products above): `b` is zero beyond `cols`, so `x` is too.
         for (row_x, row_b) in x.m.iter_mut().zip(&b.m).take(n) {
-            row_x[..cols].copy_from_slice(&row_b[..cols]);
+            *row_x = *row_b;
         }
         for i in 1..n {
             for k in 0..i {
                 let lik = self.l[i][k];
                 if lik != 0.0 {
                     let (head, tail) = x.m.split_at_mut(i);
-                    for j in 0..cols {
+                    for j in 0..MAX_DIM {
                         tail[0][j] -= lik * head[k][j];
                     }
                 }
             }
         }
         for i in 0..n {
-            for j in 0..cols {
+            for j in 0..MAX_DIM {
                 x.m[i][j] *= self.inv_d[i];
             }
         }
@@ -167,7 +190,7 @@ impl Ldlt {
                 let lki = self.l[k][i];
                 if lki != 0.0 {
                     let (head, tail) = x.m.split_at_mut(k);
-                    for j in 0..cols {
+                    for j in 0..MAX_DIM {
                         head[i][j] -= lki * tail[0][j];
                     }
                 }
