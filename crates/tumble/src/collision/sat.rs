@@ -103,6 +103,18 @@ impl<'p, 'h> Frames<'p, 'h> {
         n.dot(self.a.vertex(self.a.support_index(-n)) - on_face)
     }
 
+    /// An edge of A: its start and its direction (end − start), in A's frame.
+    fn edge_a(&self, e: &HullEdge) -> (DVec3, DVec3) {
+        let start = self.a.vertex(e.vertices[0] as usize);
+        (start, self.a.vertex(e.vertices[1] as usize) - start)
+    }
+
+    /// An edge of B: its start and its direction, in A's frame.
+    fn edge_b(&self, e: &HullEdge) -> (DVec3, DVec3) {
+        let start = self.verts_b[e.vertices[0] as usize];
+        (start, self.verts_b[e.vertices[1] as usize] - start)
+    }
+
     fn query(&self) -> SatQuery {
         match self.query_within(f64::INFINITY) {
             Ok(q) => q,
@@ -136,26 +148,47 @@ impl<'p, 'h> Frames<'p, 'h> {
         if face_b.1 > margin {
             return Err((SatFeature::FaceB(face_b.0 as u32), face_b.1));
         }
-        // Edge data gathered once, so the E_A × E_B loop is plain arithmetic.
-        let edges_a: SmallVec<[EdgeData; 32]> =
-            self.a.edges().iter().map(|e| EdgeData::of_a(self, e)).collect();
-        let edges_b: SmallVec<[EdgeData; 32]> =
-            self.b.edges().iter().map(|e| EdgeData::of_b(self, e)).collect();
+        // The Minkowski-face test of an edge pair reads four products of one edge's direction
+        // with the normals of the other's two faces (faces[0].normal × faces[1].normal points
+        // along the edge; B's normals are negated for the difference A − B, which flips no sign
+        // that matters). Each product is one face normal of a shape against one edge direction
+        // of the other: tabulated once, `F_A·E_B + E_A·F_B` of them instead of `4·E_A·E_B`, so
+        // the E_A × E_B loop only looks them up.
+        let (edges_a, edges_b) = (self.a.edges(), self.b.edges());
+        let dirs_a: SmallVec<[DVec3; 32]> = edges_a.iter().map(|e| self.edge_a(e).1).collect();
+        let dirs_b: SmallVec<[DVec3; 32]> = edges_b.iter().map(|e| self.edge_b(e).1).collect();
+        let (faces_a, faces_b, count_b) = (self.a.face_count(), self.normals_b.len(), edges_b.len());
+        // `normals_a_dirs_b[f·E_B + j]` = A's face normal f · B's edge j.
+        let mut normals_a_dirs_b: SmallVec<[f64; 512]> = SmallVec::with_capacity(faces_a * count_b);
+        for f in 0..faces_a {
+            let n = self.a.face_normal(f);
+            normals_a_dirs_b.extend(dirs_b.iter().map(|d| n.dot(*d)));
+        }
+        // `dirs_a_normals_b[i·F_B + g]` = B's face normal g · A's edge i.
+        let mut dirs_a_normals_b: SmallVec<[f64; 512]> = SmallVec::with_capacity(dirs_a.len() * faces_b);
+        for d in &dirs_a {
+            dirs_a_normals_b.extend(self.normals_b.iter().map(|n| n.dot(*d)));
+        }
         let centre_a = self.a.interior_point();
         let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
         for (ia, ea) in edges_a.iter().enumerate() {
+            let [f0, f1] = ea.faces.map(|f| f as usize);
+            let u_a = &normals_a_dirs_b[f0 * count_b..][..count_b];
+            let v_a = &normals_a_dirs_b[f1 * count_b..][..count_b];
+            let dir_a_on_b = &dirs_a_normals_b[ia * faces_b..][..faces_b];
             for (ib, eb) in edges_b.iter().enumerate() {
-                // The Minkowski-face test with the edge directions standing in for the normals'
-                // cross products (faces[0].normal × faces[1].normal points along the edge), and
-                // B's normals negated for the difference A − B.
-                let cba = eb.u.dot(ea.dir);
-                let dba = eb.v.dot(ea.dir);
-                let adc = ea.u.dot(eb.dir);
-                let bdc = ea.v.dot(eb.dir);
-                if !(cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc < 0.0) {
+                let cba = dir_a_on_b[eb.faces[0] as usize];
+                let dba = dir_a_on_b[eb.faces[1] as usize];
+                if cba * dba >= 0.0 {
                     continue;
                 }
-                if let Some((sep, n)) = edge_axis(ea.start, ea.dir, eb.start, eb.dir, centre_a) {
+                let (adc, bdc) = (u_a[ib], v_a[ib]);
+                if !(adc * bdc < 0.0 && cba * bdc < 0.0) {
+                    continue;
+                }
+                let start_a = self.a.vertex(ea.vertices[0] as usize);
+                let start_b = self.verts_b[eb.vertices[0] as usize];
+                if let Some((sep, n)) = edge_axis(start_a, dirs_a[ia], start_b, dirs_b[ib], centre_a) {
                     if sep > edges.2 {
                         edges = (ia, ib, sep, n);
                     }
@@ -163,36 +196,6 @@ impl<'p, 'h> Frames<'p, 'h> {
             }
         }
         Ok(SatQuery { face_a, face_b, edges })
-    }
-}
-
-/// One edge with its two face normals, in A's frame.
-struct EdgeData {
-    start: DVec3,
-    dir: DVec3,
-    u: DVec3,
-    v: DVec3,
-}
-
-impl EdgeData {
-    fn of_a(f: &Frames, e: &HullEdge) -> EdgeData {
-        let start = f.a.vertex(e.vertices[0] as usize);
-        EdgeData {
-            start,
-            dir: f.a.vertex(e.vertices[1] as usize) - start,
-            u: f.a.face_normal(e.faces[0] as usize),
-            v: f.a.face_normal(e.faces[1] as usize),
-        }
-    }
-
-    fn of_b(f: &Frames, e: &HullEdge) -> EdgeData {
-        let start = f.verts_b[e.vertices[0] as usize];
-        EdgeData {
-            start,
-            dir: f.verts_b[e.vertices[1] as usize] - start,
-            u: f.normals_b[e.faces[0] as usize],
-            v: f.normals_b[e.faces[1] as usize],
-        }
     }
 }
 
@@ -244,8 +247,8 @@ pub fn collide_polytopes(
     // keeps.
     if let SatFeature::EdgePair(ia, ib) = cache.feature {
         if let (Some(ea), Some(eb)) = (a.edges().get(ia as usize), b.edges().get(ib as usize)) {
-            let (ea, eb) = (EdgeData::of_a(&frames, ea), EdgeData::of_b(&frames, eb));
-            if let Some((_, n)) = edge_axis(ea.start, ea.dir, eb.start, eb.dir, a.interior_point()) {
+            let ((start_a, dir_a), (start_b, dir_b)) = (frames.edge_a(ea), frames.edge_b(eb));
+            if let Some((_, n)) = edge_axis(start_a, dir_a, start_b, dir_b, a.interior_point()) {
                 let s = frames.separation_along(n);
                 if s > margin {
                     cache.separation = s;
