@@ -312,3 +312,63 @@ fn whipping_chain_stays_within_the_projection_tolerance() {
     assert!(projected <= 3.0_f64.sqrt() * tolerance, "{projected} m");
     assert!(unprojected > 0.1, "{unprojected} m");
 }
+
+/// A chain of ten capsules on ball joints (a joint tree), thrown flat onto the ground from 0.3 m
+/// with its links flung sideways at up to 1 m/s: the exact tree rows and the contacts under every
+/// link must settle together — it comes to rest on the ground, still in one piece, and falls
+/// asleep within 5 s.
+#[test]
+fn tree_jointed_chain_settles_on_the_ground_and_sleeps() {
+    let mut world = World::new(WorldDef::default()).unwrap();
+    world
+        .add_body(BodyDef {
+            kind: BodyKind::Static,
+            shape: Some(Shape::Cuboid(Cuboid::new(DVec3::new(20.0, 20.0, 0.5)).unwrap())),
+            position: DVec3::new(0.0, 0.0, -0.5),
+            ..Default::default()
+        })
+        .unwrap();
+    let (radius, half_height) = (0.05, 0.2);
+    let link_length = 2.0 * half_height + 2.0 * radius;
+    let along_x = DQuat::from_rotation_y(PI / 2.0);
+    let mut previous = None;
+    let mut joints = vec![];
+    let mut links = vec![];
+    for i in 0..10 {
+        let x = link_length * f64::from(i);
+        let link = world
+            .add_body(BodyDef {
+                shape: Some(Shape::Capsule(Capsule::new(radius, half_height).unwrap())),
+                position: DVec3::new(x, 0.0, 0.3),
+                orientation: along_x,
+                linear_velocity: DVec3::new(0.0, f64::from(i).sin(), 0.0),
+                ..Default::default()
+            })
+            .unwrap();
+        if let Some(p) = previous {
+            let anchor = DVec3::new(x - 0.5 * link_length, 0.0, 0.3);
+            joints.push(
+                world.add_joint(JointDef::new(p, link, anchor, JointKind::Ball(BallJoint::new()))).unwrap(),
+            );
+        }
+        previous = Some(link);
+        links.push(link);
+    }
+    let mut asleep_at = None;
+    let mut largest_separation: f64 = 0.0;
+    for n in 0..300 {
+        world.step(1.0 / 60.0).unwrap();
+        for &j in &joints {
+            largest_separation = largest_separation.max(world.joint_separation(j).unwrap().length());
+        }
+        if asleep_at.is_none() && links.iter().all(|&l| !world.body(l).unwrap().is_awake()) {
+            asleep_at = Some(n);
+        }
+    }
+    let speed = links.iter().map(|&l| world.body(l).unwrap().linear_velocity().length()).fold(0.0, f64::max);
+    println!("chain on the ground: asleep after {asleep_at:?} steps, largest separation {largest_separation:.6e} m, fastest link {speed:.2e} m/s");
+    assert!(asleep_at.is_some_and(|n| n < 300), "still awake after 5 s");
+    assert!(largest_separation < 1e-3, "{largest_separation} m");
+    let lowest = links.iter().map(|&l| world.body(l).unwrap().com_world().z).fold(f64::INFINITY, f64::min);
+    assert!((lowest - radius).abs() < 2e-3, "lowest link centre at {lowest} m");
+}

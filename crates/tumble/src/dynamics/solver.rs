@@ -144,6 +144,10 @@ pub(crate) struct StepContext {
     pub relax_iterations: u32,
     /// Time constant of settled contacts' steady loads, s (0 = off).
     pub steady_load_time: f64,
+    /// Joint trees are projected onto their joints after each position stage
+    /// (`joint_projection_iterations > 0`).
+    #[serde(default)]
+    pub project_joint_trees: bool,
 }
 
 impl StepContext {
@@ -177,6 +181,7 @@ impl StepContext {
             solve_iterations: settings.solve_iterations.max(1),
             relax_iterations: settings.relax_iterations,
             steady_load_time: settings.steady_load_time.max(0.0),
+            project_joint_trees: settings.joint_trees && settings.joint_projection_iterations > 0,
         }
     }
 }
@@ -306,6 +311,9 @@ impl World {
         let ctx = &ctx;
         let projection_iterations = self.solver_settings.joint_projection_iterations;
         let projection_tolerance = self.solver_settings.joint_projection_tolerance;
+        // Projected trees are held at the position level: their velocity rows are rigid without
+        // bias (`JointTrees::project_positions`).
+        let tree_bias_rate = if ctx.project_joint_trees { 0.0 } else { ctx.joint_softness.bias_rate };
         run_on_threads(pool, |thread| {
             // A body no constraint acts on goes through all its substeps at once.
             data.unconstrained_bodies(thread, |bodies| {
@@ -325,7 +333,7 @@ impl World {
                     data.contacts_with_bodies(thread, |c, a, b| c.solve(a, b, ctx, true));
                     if has_joints {
                         data.serial(thread, |(joints, trees), bodies| {
-                            trees.solve(joints, bodies, ctx.joint_softness.bias_rate)
+                            trees.solve(joints, bodies, tree_bias_rate)
                         });
                     }
                 }

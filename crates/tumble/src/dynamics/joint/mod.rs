@@ -322,9 +322,14 @@ impl Joint {
         ctx: &StepContext,
         use_bias: bool,
     ) {
+        // A tree joint has only equality rows (`equality_row_count`), and the tree solves them
+        // exactly in the biased pass (`joint_tree/`). A projected tree's rows carry no bias, so
+        // there is none to relax either; an unprojected tree's rows are relaxed row by row here,
+        // before the contacts, so contacts keep the last word.
+        if self.in_tree && (use_bias || ctx.project_joint_trees) {
+            return;
+        }
         let pose = self.frames.pose(a, b);
-        // A tree's equality rows are solved exactly in the biased pass (`joint_tree/`); the relax
-        // pass takes them row by row here, before the contacts, so contacts keep the last word.
         let solve_equality = !self.in_tree || !use_bias;
         with_parts!(&self.kind, &mut self.parts, |settings, parts| {
             settings.solve(parts, &pose, a, b, ctx, use_bias, solve_equality)
