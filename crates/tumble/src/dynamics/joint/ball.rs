@@ -153,10 +153,8 @@ impl BallJoint {
     }
 
     /// The point rows (`equality.rs`).
-    pub(crate) fn equality_rows(pose: &JointPose) -> EqualityRows {
-        let mut rows = EqualityRows::default();
+    pub(crate) fn push_equality_rows(pose: &JointPose, rows: &mut EqualityRows) {
         rows.push_point(pose);
-        rows
     }
 
     /// Adds impulses found for the equality rows to the accumulated ones.

@@ -55,11 +55,9 @@ impl FixedJoint {
     }
 
     /// The point and rotation rows (`equality.rs`).
-    pub(crate) fn equality_rows(pose: &JointPose) -> EqualityRows {
-        let mut rows = EqualityRows::default();
+    pub(crate) fn push_equality_rows(pose: &JointPose, rows: &mut EqualityRows) {
         rows.push_point(pose);
         rows.push_rotation(RotationPart::error(pose.rotation_a, pose.rotation_b));
-        rows
     }
 
     /// Adds impulses found for the equality rows to the accumulated ones.

@@ -127,11 +127,9 @@ impl HingeJoint {
     }
 
     /// The point and hinge-rotation rows (`equality.rs`).
-    pub(crate) fn equality_rows(pose: &JointPose) -> EqualityRows {
-        let mut rows = EqualityRows::default();
+    pub(crate) fn push_equality_rows(pose: &JointPose, rows: &mut EqualityRows) {
         rows.push_point(pose);
         rows.push_hinge_rotation(&hinge_axes(pose));
-        rows
     }
 
     /// Adds impulses found for the equality rows to the accumulated ones.

@@ -338,15 +338,31 @@ impl Joint {
 
     /// The equality rows now (`equality.rs`), or `None` for a kind the joint tree leaves to the
     /// row-by-row solve (distance joints: their rows switch between rigid, rope and spring).
+    #[cfg(test)]
     pub(crate) fn equality_rows(&self, a: &SolverBody, b: &SolverBody) -> Option<equality::EqualityRows> {
+        let mut rows = equality::EqualityRows::default();
+        self.equality_rows_into(a, b, &mut rows).then_some(rows)
+    }
+
+    /// [`Joint::equality_rows`] written over `rows` (whose arrays need not be clear): the joint
+    /// tree asks for every joint's rows several times a substep, and a returned set of rows is
+    /// 600 bytes built and then copied. `false` for a kind without equality rows.
+    pub(crate) fn equality_rows_into(
+        &self,
+        a: &SolverBody,
+        b: &SolverBody,
+        rows: &mut equality::EqualityRows,
+    ) -> bool {
         let pose = self.frames.pose(a, b);
+        rows.len = 0;
         match &self.kind {
-            JointKind::Ball(_) => Some(BallJoint::equality_rows(&pose)),
-            JointKind::Hinge(_) => Some(HingeJoint::equality_rows(&pose)),
-            JointKind::Slider(_) => Some(SliderJoint::equality_rows(&pose)),
-            JointKind::Fixed(_) => Some(FixedJoint::equality_rows(&pose)),
-            JointKind::Distance(_) => None,
+            JointKind::Ball(_) => BallJoint::push_equality_rows(&pose, rows),
+            JointKind::Hinge(_) => HingeJoint::push_equality_rows(&pose, rows),
+            JointKind::Slider(_) => SliderJoint::push_equality_rows(&pose, rows),
+            JointKind::Fixed(_) => FixedJoint::push_equality_rows(&pose, rows),
+            JointKind::Distance(_) => return false,
         }
+        true
     }
 
     /// How many equality rows the joint tree solves for this joint (0: none — distance joints,

@@ -122,14 +122,12 @@ impl SliderJoint {
     }
 
     /// The rotation and perpendicular rows (`equality.rs`).
-    pub(crate) fn equality_rows(pose: &JointPose) -> EqualityRows {
+    pub(crate) fn push_equality_rows(pose: &JointPose, rows: &mut EqualityRows) {
         let (_, perpendicular) = jacobians(pose);
-        let mut rows = EqualityRows::default();
         rows.push_rotation(RotationPart::error(pose.rotation_a, pose.rotation_b));
         for jacobian in &perpendicular {
             rows.push_axis(jacobian, jacobian.linear.dot(pose.separation));
         }
-        rows
     }
 
     /// Adds impulses found for the equality rows to the accumulated ones.

@@ -410,6 +410,7 @@ impl JointTrees {
         matrix: bool,
     ) -> f64 {
         let mut largest_error = 0.0_f64;
+        let mut rows = EqualityRows::default();
         for i in 0..self.nodes.len() {
             let node = &mut self.nodes[i];
             node.x = [0.0; MAX_DIM];
@@ -435,9 +436,8 @@ impl JointTrees {
                 NodeKind::Joint { slot } => {
                     let joint = joints.iter_slot(slot as usize).expect("tree joints are live");
                     let (ia, ib) = (joint.body_a.index(), joint.body_b.index());
-                    let rows = joint
-                        .equality_rows(&bodies[ia], &bodies[ib])
-                        .expect("tree joints have equality rows");
+                    let has_rows = joint.equality_rows_into(&bodies[ia], &bodies[ib], &mut rows);
+                    debug_assert!(has_rows, "tree joints have equality rows");
                     debug_assert_eq!(rows.len, node.dim);
                     for k in 0..rows.len {
                         largest_error = largest_error.max(rows.error[k].abs());
