@@ -33,7 +33,7 @@ pub(crate) mod block;
 use crate::dynamics::joint::equality::EqualityRows;
 use crate::dynamics::joint::Joint;
 use crate::dynamics::solver_body::SolverBody;
-use crate::id::SlotPool;
+use crate::id::{RawId, SlotPool};
 use crate::math::DVec3;
 use block::{Block, BlockVector, Ldlt, MAX_DIM};
 
@@ -119,6 +119,10 @@ pub(crate) struct JointTrees {
     joint_visited: Vec<bool>,
     /// The nodes hold the factors of their blocks as last assembled.
     factored: bool,
+    /// What the trees were built from: each tree joint (in slot order) with its row count and
+    /// whether its bodies move; and this step's, to compare.
+    key: Vec<(RawId, u8, bool, bool)>,
+    next_key: Vec<(RawId, u8, bool, bool)>,
 }
 
 /// Whether a solver body is one of the figure's moving bodies (finite, positive mass).
@@ -139,6 +143,7 @@ impl JointTrees {
     /// No trees this step: every joint is solved row by row.
     pub fn clear(&mut self, joints: &mut SlotPool<Joint>) {
         self.nodes.clear();
+        self.key.clear();
         for (_, joint) in joints.iter_mut() {
             joint.in_tree = false;
         }
@@ -146,10 +151,9 @@ impl JointTrees {
 
     /// Builds this step's trees from the joints being solved, and marks each joint `in_tree`.
     pub fn build(&mut self, joints: &mut SlotPool<Joint>, bodies: &[SolverBody]) {
-        self.nodes.clear();
         self.factored = false;
         self.tree_joints.clear();
-        self.breadth_first.clear();
+        self.next_key.clear();
         let ground = bodies.len() as u32;
         self.union_find.clear();
         self.union_find.extend(0..=ground);
@@ -173,7 +177,17 @@ impl JointTrees {
             self.union_find[ra as usize] = rb;
             joint.in_tree = true;
             self.tree_joints.push(id.index() as u32);
+            self.next_key.push((id, joint.equality_row_count() as u8, moves_a, moves_b));
         }
+        // The same joints, rows and moving ends as last step make the same trees: keep them (the
+        // nodes' blocks are refilled by every solve). Rebuilding them was a tenth of a chain's
+        // step.
+        if self.next_key == self.key {
+            return;
+        }
+        std::mem::swap(&mut self.key, &mut self.next_key);
+        self.nodes.clear();
+        self.breadth_first.clear();
         if self.tree_joints.is_empty() {
             return;
         }
@@ -578,6 +592,45 @@ mod tests {
         let mut trees = JointTrees::default();
         trees.build(&mut world.joints, &bodies);
         (ctx, bodies, trees)
+    }
+
+    /// The trees are kept from step to step while the same joints join the same moving bodies,
+    /// and rebuilt when that changes: here the middle body stops moving (asleep, say), which
+    /// cuts the chain into two figures grounded on it.
+    #[test]
+    fn trees_are_rebuilt_only_when_their_joints_or_moving_bodies_change() {
+        let mut world = World::new(Default::default()).unwrap();
+        let ids: Vec<_> = (0..3)
+            .map(|k| {
+                world
+                    .add_body(BodyDef {
+                        shape: Some(Shape::Cuboid(Cuboid::new(DVec3::splat(0.1)).unwrap())),
+                        position: DVec3::new(0.5 * k as f64, 0.0, 1.0),
+                        ..Default::default()
+                    })
+                    .unwrap()
+            })
+            .collect();
+        for k in 0..2 {
+            let anchor = DVec3::new(0.5 * k as f64 + 0.25, 0.0, 1.0);
+            world
+                .add_joint(JointDef::new(ids[k], ids[k + 1], anchor, JointKind::Ball(BallJoint::new())))
+                .unwrap();
+        }
+        let (_, mut bodies, mut trees) = prepared(&mut world);
+        // Three bodies and two joints, one figure: five nodes.
+        assert_eq!(trees.nodes.len(), 5);
+        let marker = 1234.5;
+        trees.nodes[0].x[0] = marker;
+        trees.build(&mut world.joints, &bodies);
+        assert_eq!(trees.nodes[0].x[0], marker, "the same joints and bodies keep the nodes");
+
+        bodies[ids[1].index()] = SolverBody::FIXED;
+        trees.build(&mut world.joints, &bodies);
+        // Two figures, each a joint hung from the (now fixed) middle body and its outer body.
+        assert_eq!(trees.nodes.len(), 4);
+        assert!(trees.nodes.iter().all(|node| node.x[0] != marker));
+        assert!(world.joints.iter().all(|(_, j)| j.in_tree));
     }
 
     /// A free figure (no joint to the ground) pulled apart by centimetres and turned: the
