@@ -26,29 +26,40 @@ impl Block {
         Block { rows, cols, m: [[0.0; MAX_DIM]; MAX_DIM] }
     }
 
-    /// Makes the block a zero `rows × cols` block. (Only that corner is cleared: every block is
-    /// zero outside its size, and a node's blocks keep their sizes.)
+    /// Makes the block a zero `rows × cols` block, in place: its first `rows` rows are cleared
+    /// whole. (The products below write only a block's own rows, but all six columns of them —
+    /// where a non-finite neighbour's `0 × ∞` can leave NaN beyond its size; clearing whole rows
+    /// keeps that from reaching the next step's solve of a kept tree.)
     pub fn set_zero(&mut self, rows: usize, cols: usize) {
-        debug_assert!(self.m.iter().enumerate().all(|(i, row)| row
-            .iter()
-            .enumerate()
-            .all(|(j, &v)| v == 0.0 || (i < self.rows && j < self.cols))));
         (self.rows, self.cols) = (rows, cols);
         for row in self.m.iter_mut().take(rows) {
             *row = [0.0; MAX_DIM];
         }
     }
 
-    // The products below run their column loops over all six columns: blocks are zero outside
+    // The products below run their column loops over all six columns, and their other loops
+    // with constant bounds for the sizes that occur (a match on the sizes, then an inlined body): blocks are zero outside
     // their size, so the extra terms add exact zeros, and loops of a fixed length unroll and
     // vectorise where loops to `cols` did not.
 
     /// `self −= aᵀ b` (`a` is `k × rows`, `b` is `k × cols`).
     pub fn sub_transpose_mul(&mut self, a: &Block, b: &Block) {
         debug_assert!(a.rows == b.rows && a.cols == self.rows && b.cols == self.cols);
-        for k in 0..a.rows {
+        match (a.rows, self.rows) {
+            (3, 6) => self.sub_transpose_mul_sized(a, b, 3, 6),
+            (6, 3) => self.sub_transpose_mul_sized(a, b, 6, 3),
+            (5, 6) => self.sub_transpose_mul_sized(a, b, 5, 6),
+            (6, 5) => self.sub_transpose_mul_sized(a, b, 6, 5),
+            (6, 6) => self.sub_transpose_mul_sized(a, b, 6, 6),
+            (k, r) => self.sub_transpose_mul_sized(a, b, k, r),
+        }
+    }
+
+    #[inline(always)]
+    fn sub_transpose_mul_sized(&mut self, a: &Block, b: &Block, depth: usize, rows: usize) {
+        for k in 0..depth {
             let (a_row, b_row) = (&a.m[k], &b.m[k]);
-            for i in 0..self.rows {
+            for i in 0..rows {
                 let aki = a_row[i];
                 if aki == 0.0 {
                     continue;
@@ -110,7 +121,18 @@ impl Ldlt {
     /// was a fifth of a chain's step.
     pub fn factor_from(&mut self, a: &Block) {
         debug_assert_eq!(a.rows, a.cols);
-        let n = a.rows;
+        // The sizes that occur (ball joints 3, hinges and sliders 5, fixed joints and bodies 6)
+        // each get a copy with constant loop bounds, which the compiler unrolls.
+        match a.rows {
+            3 => self.factor_sized(a, 3),
+            5 => self.factor_sized(a, 5),
+            6 => self.factor_sized(a, 6),
+            n => self.factor_sized(a, n),
+        }
+    }
+
+    #[inline(always)]
+    fn factor_sized(&mut self, a: &Block, n: usize) {
         let scale = (0..n).map(|i| a.m[i][i].abs()).fold(0.0, f64::max);
         let tolerance = 1e-12 * scale;
         let mut d = [0.0; MAX_DIM];
@@ -161,8 +183,18 @@ impl Ldlt {
 
     /// `x = A⁻¹ b`, written over `x` (only the entries of `b`'s size).
     pub fn solve_block_into(&self, b: &Block, x: &mut Block) {
+        match self.dim {
+            3 => self.solve_block_sized(b, x, 3),
+            5 => self.solve_block_sized(b, x, 5),
+            6 => self.solve_block_sized(b, x, 6),
+            n => self.solve_block_sized(b, x, n),
+        }
+    }
+
+    #[inline(always)]
+    fn solve_block_sized(&self, b: &Block, x: &mut Block, n: usize) {
         debug_assert_eq!(b.rows, self.dim);
-        let (n, cols) = (self.dim, b.cols);
+        let cols = b.cols;
         x.rows = b.rows;
         x.cols = cols;
         // All six columns (see the products above): `b` is zero beyond `cols`, so `x` is too.

@@ -633,6 +633,53 @@ mod tests {
         assert!(world.joints.iter().all(|(_, j)| j.in_tree));
     }
 
+    /// A body turned non-finite mid-solve leaves NaN in the kept trees' blocks (`0 × ∞` in the
+    /// products over whole rows). Once the body is finite again and the same trees are kept,
+    /// the next solve must be clean: nothing of the failure carries over.
+    #[test]
+    fn kept_trees_do_not_carry_a_non_finite_solve_over() {
+        let mut world = World::new(Default::default()).unwrap();
+        let ids: Vec<_> = (0..3)
+            .map(|k| {
+                world
+                    .add_body(BodyDef {
+                        shape: Some(Shape::Cuboid(Cuboid::new(DVec3::new(0.2, 0.1, 0.1)).unwrap())),
+                        position: DVec3::new(0.5 * k as f64, 0.0, 1.0),
+                        orientation: DQuat::from_rotation_z(0.3 * k as f64),
+                        ..Default::default()
+                    })
+                    .unwrap()
+            })
+            .collect();
+        for k in 0..2 {
+            let anchor = DVec3::new(0.5 * k as f64 + 0.25, 0.0, 1.0);
+            let kind =
+                if k == 0 { JointKind::Ball(BallJoint::new()) } else { JointKind::Fixed(FixedJoint::new()) };
+            world.add_joint(JointDef::new(ids[k], ids[k + 1], anchor, kind)).unwrap();
+        }
+        let (_, mut bodies, mut trees) = prepared(&mut world);
+        let clean = bodies.clone();
+        bodies[ids[2].index()].w = DVec3::new(f64::INFINITY, 0.0, f64::NAN);
+        bodies[ids[2].index()].q = DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0);
+        trees.solve(&mut world.joints, &mut bodies, 10.0);
+        assert!(bodies.iter().any(|b| !b.v.is_finite()), "the failure reached the figure");
+
+        let mut bodies = clean;
+        bodies[ids[0].index()].w = DVec3::new(0.5, -1.0, 2.0);
+        trees.build(&mut world.joints, &bodies);
+        assert_eq!(trees.nodes.len(), 5, "the same trees are kept");
+        trees.solve(&mut world.joints, &mut bodies, 10.0);
+        assert!(bodies.iter().all(|b| b.v.is_finite() && b.w.is_finite()));
+        for (_, j) in world.joints.iter() {
+            let rows = j.equality_rows(&bodies[j.body_a.index()], &bodies[j.body_b.index()]).unwrap();
+            for k in 0..rows.len {
+                let residual = rows.rows[k].velocity(&bodies[j.body_a.index()], &bodies[j.body_b.index()])
+                    + 10.0 * rows.error[k];
+                assert!(residual.abs() < 1e-10, "row {k}: {residual:e}");
+            }
+        }
+    }
+
     /// A free figure (no joint to the ground) pulled apart by centimetres and turned: the
     /// projection puts every joint back within the tolerance, leaves the velocities alone, and
     /// keeps the figure's centre of mass where it was (the joints' linear rows push its bodies
