@@ -7,6 +7,9 @@
 //! hinge whose two axes are at right angles) gets a zero inverse: that direction takes no
 //! impulse in this pass, instead of an infinite one.
 
+// Dense kernels index rows and columns by number: clearer here than zipped iterators.
+#![allow(clippy::needless_range_loop)]
+
 /// Largest block dimension: six rows (a fixed joint) or six velocities (a body).
 pub(crate) const MAX_DIM: usize = 6;
 
