@@ -79,9 +79,9 @@ pub struct SolverSettings {
     /// Most Newton steps per substep of the joint trees' position projection, which moves each
     /// tree's bodies after the position stage until its rows' position errors are at most
     /// `joint_projection_tolerance` (`docs/joint-tree.md`, "Holding the positions"). Most
-    /// substeps need one or none; the tip of a 100-link chain whipping round at 2 substeps of
-    /// 1/120 s needs up to three. 0 turns the projection off: drift is then corrected only
-    /// through the velocities, at `joint_hertz`. Default 8.
+    /// substeps need one or none; a 100-link chain whipping round at one substep of 1/60 s
+    /// needed up to five. 0 turns the projection off: drift is then corrected only through the
+    /// velocities, at `joint_hertz`. Default 8.
     #[serde(default = "default_joint_projection_iterations")]
     pub joint_projection_iterations: u32,
     /// The position error, m (rad for angular rows), up to which the projection leaves a joint
@@ -339,7 +339,7 @@ impl World {
                 }
                 data.bodies(thread, |body| body.integrate_position(ctx.h));
                 // Joint trees back onto their constraints (before the relax pass reads the poses).
-                if has_joints && projection_iterations > 0 {
+                if has_joints && ctx.project_joint_trees {
                     data.serial(thread, |(joints, trees), bodies| {
                         trees.project_positions(
                             joints,
