@@ -22,6 +22,7 @@ pub mod shape;
 pub mod snapshot;
 mod state_hash;
 mod step;
+mod step_threads;
 pub mod world;
 
 pub use body::{Body, BodyDef, BodyKind, BodyState};

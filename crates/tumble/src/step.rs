@@ -11,6 +11,7 @@ use std::time::Instant;
 use crate::id::BodyId;
 use crate::math::DVec3;
 use crate::profile::Phase;
+use crate::step_threads::StepThreads;
 use crate::world::{World, WorldError};
 
 impl World {
@@ -21,12 +22,17 @@ impl World {
         }
         let start = Instant::now();
         let mut clock = start;
+        // The pool's threads, for this step (step_threads.rs): they wake while the serial
+        // stages below run.
+        let pool = self.pool.clone();
+        let threads = pool.as_deref().and_then(StepThreads::begin);
+        let threads = threads.as_ref();
 
         // Broad phase: move proxies (unless the last step's finalize left them in place for this
         // step length and no body has changed since), find new pairs; narrow phase: update
         // manifolds (collision/contact_manager.rs).
         if self.proxies_in_place_for != Some(dt) {
-            self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
+            self.contact_manager.update_proxies(&self.bodies, dt, threads);
         }
         self.profile.lap(Phase::Proxies, &mut clock);
         // Jointed pairs that may not collide, sorted once: each new pair is looked up in them
@@ -44,7 +50,7 @@ impl World {
         self.contact_manager.find_new_contacts(&self.bodies, joined);
         self.scratch.jointed_pairs = jointed;
         self.profile.lap(Phase::BroadPhase, &mut clock);
-        self.contact_manager.update_contacts(&self.bodies, dt, self.pool.as_deref());
+        self.contact_manager.update_contacts(&self.bodies, dt, threads);
         self.profile.lap(Phase::NarrowPhase, &mut clock);
 
         // Wake sleeping islands that awake bodies touch or are jointed to.
@@ -58,7 +64,7 @@ impl World {
         self.isolate_bodies_about_to_overflow(dt);
 
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
-        self.solve(dt);
+        self.solve(dt, threads);
         self.isolate_non_finite_bodies();
         self.profile.lap(Phase::Solve, &mut clock);
 
@@ -69,7 +75,7 @@ impl World {
 
         // Move the proxies of the bodies that moved, so queries between steps see the current
         // poses (query.rs); the next step's broad phase then finds them already in place.
-        self.contact_manager.update_proxies(&self.bodies, dt, self.pool.as_deref());
+        self.contact_manager.update_proxies(&self.bodies, dt, threads);
         self.proxies_in_place_for = Some(dt);
         self.profile.lap(Phase::Finalize, &mut clock);
 

@@ -19,6 +19,7 @@ use crate::events::EventRecorder;
 use crate::id::{BodyId, SlotPool};
 use crate::math::{DVec3, Transform};
 use crate::shape::Shape;
+use crate::step_threads::StepThreads;
 
 /// The base speculative distance, m: contacts are made this far before touching (plus the
 /// distance the pair closes within the step).
@@ -73,9 +74,10 @@ pub(crate) struct ContactManager {
     /// What the threaded narrow phase found for each contact, in contact order.
     #[serde(skip)]
     outcomes: Vec<Outcome>,
-    /// The proxies' new boxes (threaded proxy update only).
+    /// The proxies' new boxes, one list per share of the moving bodies (threaded proxy update
+    /// only).
     #[serde(skip)]
-    proxy_moves: Vec<ProxyUpdate>,
+    proxy_moves: Vec<Vec<ProxyUpdate>>,
 }
 
 /// One contact's narrow-phase update: whether it is kept, and its event state before and after.
@@ -121,13 +123,13 @@ impl ContactManager {
     }
 
     /// Moves the proxies of awake, non-static bodies to their current poses; the fat boxes are
-    /// stretched by the distance the body will travel in the next step. With a `pool`, the boxes
-    /// are computed on its threads in fixed chunks of bodies and the tree is then updated in body
-    /// order, as on one thread.
-    pub fn update_proxies(&mut self, bodies: &SlotPool<Body>, dt: f64, pool: Option<&rayon::ThreadPool>) {
+    /// stretched by the distance the body will travel in the next step. With `threads`, the
+    /// boxes are computed on them, a share of the bodies each, and the tree is then updated in
+    /// body order, as on one thread.
+    pub fn update_proxies(&mut self, bodies: &SlotPool<Body>, dt: f64, threads: Option<&StepThreads>) {
         let moving = |body: &&Body| body.kind != BodyKind::Static && body.is_awake();
         // Threads only for enough bodies to share (the result is the same either way).
-        let Some(pool) = pool.filter(|_| bodies.len() >= MIN_SHARED_CHUNKS * PROXY_CHUNK) else {
+        let Some(threads) = threads.filter(|_| bodies.len() >= MIN_SHARED_CHUNKS * PROXY_CHUNK) else {
             for (_, body) in bodies.iter() {
                 if moving(&body) {
                     self.move_body_proxies(body, dt);
@@ -135,19 +137,21 @@ impl ContactManager {
             }
             return;
         };
-        use rayon::prelude::*;
         let margin = self.broad_phase.margin();
         let movers: Vec<&Body> = bodies.iter().map(|(_, b)| b).filter(moving).collect();
+        // One list per share of the movers, in share order; any thread may fill any list.
         let mut moves = std::mem::take(&mut self.proxy_moves);
-        moves.clear();
-        pool.install(|| {
-            moves.par_extend(
-                movers
-                    .par_chunks(PROXY_CHUNK)
-                    .flat_map_iter(|chunk| chunk.iter().flat_map(|b| proxy_updates(b, dt, margin))),
-            )
+        let shares = threads.count();
+        moves.resize_with(shares, Vec::new);
+        let mut units = vec![(); shares];
+        threads.for_each_chunk((&mut moves, &mut units), 1, |share, lists, _| {
+            let list = &mut lists[0];
+            list.clear();
+            let len = movers.len();
+            let mine = &movers[len * share / shares..len * (share + 1) / shares];
+            list.extend(mine.iter().flat_map(|b| proxy_updates(b, dt, margin)));
         });
-        for m in &moves {
+        for m in moves.iter().flatten() {
             self.broad_phase.move_proxy(m.key, m.aabb, m.displacement);
         }
         self.proxy_moves = moves;
@@ -198,11 +202,11 @@ impl ContactManager {
     }
 
     /// Updates every contact: drops those whose fat boxes parted, recomputes the manifolds of the
-    /// rest (where a body is awake). `dt` sizes the speculative margin. With a `pool`, the
-    /// manifolds are computed in chunks of [`NARROW_PHASE_CHUNK`] contacts on its threads: each
+    /// rest (where a body is awake). `dt` sizes the speculative margin. With `threads`, the
+    /// manifolds are computed in chunks of [`NARROW_PHASE_CHUNK`] contacts on them: each
     /// contact's update reads only the two bodies and writes only the contact, so the result is
     /// the same bits in any split; events are recorded afterwards in contact order.
-    pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64, pool: Option<&rayon::ThreadPool>) {
+    pub fn update_contacts(&mut self, bodies: &SlotPool<Body>, dt: f64, threads: Option<&StepThreads>) {
         let (broad_phase, events) = (&self.broad_phase, &mut self.events);
         // A contact is kept while its fat boxes overlap and both bodies exist.
         let kept = |contact: &Contact| -> Option<(&Body, &Body)> {
@@ -214,7 +218,7 @@ impl ContactManager {
         };
         // Threads only for enough contacts to share (the result is the same either way): for a
         // chain's few contacts they cost more than the work.
-        let Some(pool) = pool.filter(|_| self.contacts.len() >= MIN_SHARED_CHUNKS * NARROW_PHASE_CHUNK)
+        let Some(threads) = threads.filter(|_| self.contacts.len() >= MIN_SHARED_CHUNKS * NARROW_PHASE_CHUNK)
         else {
             // On one thread: drop, update and record in a single walk over the contacts.
             self.contacts.retain(|contact| {
@@ -235,28 +239,22 @@ impl ContactManager {
         // On the threads: whether each contact is kept, and its event state before and after its
         // update; then, on this thread, drop the parted contacts and record the changes in
         // contact order (a walk that touches only the contacts that changed).
-        use rayon::prelude::*;
         let outcomes = &mut self.outcomes;
         outcomes.clear();
         outcomes.resize(self.contacts.len(), Outcome::default());
         let contacts = self.contacts.as_mut_slice();
-        pool.install(|| {
-            contacts
-                .par_chunks_mut(NARROW_PHASE_CHUNK)
-                .zip(outcomes.par_chunks_mut(NARROW_PHASE_CHUNK))
-                .for_each(|(chunk, outcomes)| {
-                    for (contact, outcome) in chunk.iter_mut().zip(outcomes) {
-                        let before = EventRecorder::state(contact);
-                        let Some((a, b)) = kept(contact) else {
-                            *outcome = Outcome { kept: false, before, after: before };
-                            continue;
-                        };
-                        if a.is_awake() || b.is_awake() {
-                            update_manifold(contact, a, b, dt);
-                        }
-                        *outcome = Outcome { kept: true, before, after: EventRecorder::state(contact) };
-                    }
-                })
+        threads.for_each_chunk((contacts, outcomes), NARROW_PHASE_CHUNK, |_, chunk, outcomes| {
+            for (contact, outcome) in chunk.iter_mut().zip(outcomes) {
+                let before = EventRecorder::state(contact);
+                let Some((a, b)) = kept(contact) else {
+                    *outcome = Outcome { kept: false, before, after: before };
+                    continue;
+                };
+                if a.is_awake() || b.is_awake() {
+                    update_manifold(contact, a, b, dt);
+                }
+                *outcome = Outcome { kept: true, before, after: EventRecorder::state(contact) };
+            }
         });
         let mut outcomes = self.outcomes.iter();
         self.contacts.retain(|contact| {

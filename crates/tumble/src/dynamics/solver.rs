@@ -28,6 +28,7 @@ use crate::dynamics::solver_threads::{run_on_threads, ColouredContacts, SolveDat
 use crate::id::SlotPool;
 use crate::math::DVec3;
 use crate::shape::Shape;
+use crate::step_threads::StepThreads;
 use crate::world::World;
 
 /// Solver settings. The defaults suit 60 Hz steps of everyday objects.
@@ -205,10 +206,13 @@ const PARALLEL_MIN_CONTACTS: usize = 128;
 /// Bodies from which the body stages alone make threads worth their barriers.
 const PARALLEL_MIN_BODIES: usize = 1024;
 
+/// Bodies a thread gathers at a time.
+const GATHER_CHUNK: usize = 256;
+
 impl World {
     /// Runs the solver stages for one step of `dt` (see the module docs for the order), on the
     /// world's threads if it has them.
-    pub(crate) fn solve(&mut self, dt: f64) {
+    pub(crate) fn solve(&mut self, dt: f64, threads: Option<&StepThreads>) {
         let ctx = StepContext::new(dt, self.gravity, &self.solver_settings);
 
         // Gather: the solver's working copy of every body, indexed by slot.
@@ -224,11 +228,13 @@ impl World {
         // body was built on the stack and then copied (a third of the gather's time).
         let count = world_bodies.capacity_index();
         bodies.resize(count, SolverBody::FIXED);
-        match self.pool.as_deref().filter(|_| count >= PARALLEL_MIN_BODIES) {
-            Some(pool) => {
-                use rayon::prelude::*;
-                pool.install(|| {
-                    bodies.par_iter_mut().enumerate().for_each(|(slot, dst)| *dst = gather(slot))
+        match threads.filter(|_| count >= PARALLEL_MIN_BODIES) {
+            Some(threads) => {
+                let mut units = vec![(); count];
+                threads.for_each_chunk((&mut bodies, &mut units), GATHER_CHUNK, |offset, part, _| {
+                    for (i, dst) in part.iter_mut().enumerate() {
+                        *dst = gather(offset + i);
+                    }
                 });
             }
             None => bodies.iter_mut().enumerate().for_each(|(slot, dst)| *dst = gather(slot)),
@@ -284,8 +290,7 @@ impl World {
         {
             let coloured = ColouredContacts::new(&mut contacts, &colouring);
             // Threads only where there are enough contacts to share (the result is the same).
-            let pool = self.pool.as_deref().filter(|_| count >= PARALLEL_MIN_CONTACTS);
-            run_on_threads(pool, |thread| {
+            run_on_threads(threads.filter(|_| count >= PARALLEL_MIN_CONTACTS), |thread| {
                 for input in thread.share(0..count) {
                     let contact = &store[solved[input] as usize];
                     coloured.with_slot(thread, input, |slot| {
@@ -304,7 +309,7 @@ impl World {
         let worth_threads = colouring.stages().iter().any(|&(_, split)| split)
             || partition.constrained.len() >= PARALLEL_MIN_BODIES
             || partition.unconstrained.len() >= PARALLEL_MIN_BODIES;
-        let pool = self.pool.as_deref().filter(|_| worth_threads);
+        let threads = threads.filter(|_| worth_threads);
         let mut serial = (&mut self.joints, &mut trees);
         let lists = (&partition.constrained[..], &partition.unconstrained[..]);
         let data = SolveData::new(&mut bodies, lists, &mut contacts, &colouring, &mut serial);
@@ -314,7 +319,7 @@ impl World {
         // Projected trees are held at the position level: their velocity rows are rigid without
         // bias (`JointTrees::project_positions`).
         let tree_bias_rate = if ctx.project_joint_trees { 0.0 } else { ctx.joint_softness.bias_rate };
-        run_on_threads(pool, |thread| {
+        run_on_threads(threads, |thread| {
             // A body no constraint acts on goes through all its substeps at once.
             data.unconstrained_bodies(thread, |bodies| {
                 SolverBody::integrate_unconstrained(bodies, ctx.gravity, ctx.h, ctx.substeps)

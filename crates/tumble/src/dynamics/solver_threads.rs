@@ -1,6 +1,6 @@
-//! The solver's threads: every thread of the world's pool runs the whole substep loop, each doing
-//! its share of every stage, and they meet at a spinning barrier between stages (as Box2D v3's
-//! solver does).
+//! The solver's threads: every one of the step's threads (step_threads.rs) runs the whole
+//! substep loop, each doing its share of every stage, and they meet at a spinning barrier between
+//! stages (as Box2D v3's solver does).
 //!
 //! A step has hundreds of stages (each colour of each pass of each substep, colouring.rs); handing
 //! each to a thread pool would cost a wake-up per stage, more than a small stage's work. Here the
@@ -20,13 +20,26 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use crate::dynamics::colouring::ContactColouring;
 use crate::dynamics::contact_solver::ContactConstraint;
 use crate::dynamics::solver_body::SolverBody;
+use crate::step_threads::StepThreads;
 
 /// Spins before a waiting thread starts yielding its core (on a machine with fewer cores than
 /// threads, the thread it waits for may need that core).
 const SPINS_BEFORE_YIELD: u32 = 200;
 
 /// The panic of a thread released from a barrier because another thread panicked.
-const RELEASED: &str = "another solver thread panicked";
+pub(crate) const RELEASED: &str = "another solver thread panicked";
+
+/// One round of waiting: a spin, or once a thread has spun [`SPINS_BEFORE_YIELD`] times, a
+/// yield of its core.
+#[inline]
+pub(crate) fn backoff(spins: &mut u32) {
+    if *spins < SPINS_BEFORE_YIELD {
+        *spins += 1;
+        std::hint::spin_loop();
+    } else {
+        std::thread::yield_now();
+    }
+}
 
 /// A barrier for a fixed number of threads that spins instead of sleeping.
 pub(crate) struct SpinBarrier {
@@ -61,12 +74,7 @@ impl SpinBarrier {
             if self.poisoned.load(Ordering::Relaxed) {
                 std::panic::panic_any(RELEASED);
             }
-            if spins < SPINS_BEFORE_YIELD {
-                spins += 1;
-                std::hint::spin_loop();
-            } else {
-                std::thread::yield_now();
-            }
+            backoff(&mut spins);
         }
     }
 
@@ -253,9 +261,9 @@ impl<'a> ColouredContacts<'a> {
     }
 }
 
-/// A slice the solver's threads share, each writing only elements no other thread touches until
-/// the next barrier.
-struct Shared<'a, T> {
+/// A slice the step's threads share, each writing only elements no other thread touches until
+/// the next barrier (or, in `StepThreads::for_each_chunk`, until the work is done).
+pub(crate) struct Shared<'a, T> {
     ptr: *mut T,
     len: usize,
     _slice: std::marker::PhantomData<&'a mut [T]>,
@@ -267,7 +275,7 @@ unsafe impl<T: Send> Send for Shared<'_, T> {}
 unsafe impl<T: Send> Sync for Shared<'_, T> {}
 
 impl<'a, T> Shared<'a, T> {
-    fn new(slice: &'a mut [T]) -> Self {
+    pub(crate) fn new(slice: &'a mut [T]) -> Self {
         Shared { ptr: slice.as_mut_ptr(), len: slice.len(), _slice: std::marker::PhantomData }
     }
 
@@ -277,7 +285,7 @@ impl<'a, T> Shared<'a, T> {
     /// No other thread may use them until the next barrier, and this thread holds no other
     /// reference to them.
     #[allow(clippy::mut_from_ref)]
-    unsafe fn slice(&self, range: Range<usize>) -> &mut [T] {
+    pub(crate) unsafe fn slice(&self, range: Range<usize>) -> &mut [T] {
         assert!(range.start <= range.end && range.end <= self.len, "share out of bounds");
         // SAFETY: in bounds (checked); exclusive by the caller's contract.
         unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
@@ -333,24 +341,11 @@ impl Shared<'_, SolverBody> {
     }
 }
 
-/// Runs `work` on every thread of `pool` (or on this thread alone), each with its
-/// `SolverThread`. A panic on any thread releases the others and is passed on.
-pub(crate) fn run_on_threads(pool: Option<&rayon::ThreadPool>, work: impl Fn(SolverThread) + Sync) {
-    let Some(pool) = pool.filter(|pool| pool.current_num_threads() > 1) else {
-        work(SolverThread::ALONE);
-        return;
-    };
-    let barrier = SpinBarrier::new(pool.current_num_threads());
-    let results = pool.broadcast(|context| {
-        let thread = SolverThread::new(context.index(), &barrier);
-        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(thread)))
-            .inspect_err(|_| barrier.poison())
-    });
-    // Pass on the panic that caused the others (they only stopped waiting for it).
-    let mut panics: Vec<_> = results.into_iter().filter_map(Result::err).collect();
-    let released =
-        |payload: &Box<dyn std::any::Any + Send>| payload.downcast_ref::<&str>() == Some(&RELEASED);
-    if let Some(cause) = panics.iter().position(|p| !released(p)).or((!panics.is_empty()).then_some(0)) {
-        std::panic::resume_unwind(panics.swap_remove(cause));
+/// Runs `work` on every one of the step's `threads` (or on this thread alone), each with its
+/// `SolverThread`.
+pub(crate) fn run_on_threads(threads: Option<&StepThreads>, work: impl Fn(SolverThread) + Sync) {
+    match threads {
+        Some(threads) => threads.run(work),
+        None => work(SolverThread::ALONE),
     }
 }

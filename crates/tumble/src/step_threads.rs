@@ -1,0 +1,254 @@
+//! The world's threads for the length of one step.
+//!
+//! A step hands work to its threads five times or more (the proxies, the narrow phase, the
+//! solver's gather, its contact preparation and its substeps), with serial work in between. Each
+//! hand-over through the thread pool itself woke sleeping threads: on a two-core virtual machine
+//! a sleeping thread took about 75 µs to start, and the calling thread as long to notice the end
+//! — about 150 µs a hand-over, 0.75 ms of a 7 ms step of the rain scene.
+//!
+//! So a step takes the pool's threads once, at its start ([`StepThreads::begin`]): they then wait
+//! for work by spinning (yielding their core between checks after a while) instead of sleeping,
+//! and the step's own thread posts each piece of work to them ([`StepThreads::run`]) and does its
+//! share as thread 0. The threads wake while the step's first serial stages run, and are let go
+//! when the step ends (on drop). Every piece of work is finished by all threads before `run`
+//! returns, so a piece may borrow from the step.
+//!
+//! Which thread does what never changes a number: the work handed out is split by the scene
+//! (chunks of contacts, shares of bodies, a colour's constraints), never merged in thread order.
+
+#![allow(unsafe_code)] // The posted work is borrowed across threads; see `run`.
+
+use std::any::Any;
+use std::cell::UnsafeCell;
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+
+use crate::dynamics::solver_threads::{backoff, Shared, SolverThread, SpinBarrier, RELEASED};
+
+/// A piece of work for every thread: called once on each, with its place among them.
+type Work<'a> = dyn Fn(SolverThread) + Sync + 'a;
+
+/// What the step's thread and the pool's threads share.
+struct Control {
+    threads: usize,
+    /// Pieces of work posted so far (a thread runs piece `k` once it sees `posted ≥ k`).
+    posted: AtomicUsize,
+    /// The last piece posted. Written only while no thread runs a piece (see `run`).
+    work: UnsafeCell<Option<*const Work<'static>>>,
+    /// Pieces finished, summed over the pool's threads.
+    finished: AtomicUsize,
+    /// Set when the step ends: the pool's threads go back to the pool.
+    closing: AtomicBool,
+    /// The barrier the pieces' stages meet at.
+    barrier: SpinBarrier,
+    /// The first panic of a pool thread, to pass on from `run`.
+    panic: Mutex<Option<Box<dyn Any + Send>>>,
+}
+
+// SAFETY: `work` is written by the step's thread only while the pool's threads wait for the next
+// piece (all have finished the last: `run` waits for that), and read by them only after the
+// `posted` increment that follows the write (release/acquire); everything else is atomic or
+// locked.
+unsafe impl Sync for Control {}
+unsafe impl Send for Control {}
+
+/// The pool's threads, taken for one step.
+pub(crate) struct StepThreads {
+    control: Arc<Control>,
+}
+
+impl StepThreads {
+    /// Takes `pool`'s threads for a step: all but one wait for work beside the calling thread,
+    /// which makes as many threads as the pool has. `None` for a pool of one thread.
+    pub fn begin(pool: &rayon::ThreadPool) -> Option<StepThreads> {
+        let threads = pool.current_num_threads();
+        if threads < 2 {
+            return None;
+        }
+        let control = Arc::new(Control {
+            threads,
+            posted: AtomicUsize::new(0),
+            work: UnsafeCell::new(None),
+            finished: AtomicUsize::new(0),
+            closing: AtomicBool::new(false),
+            barrier: SpinBarrier::new(threads),
+            panic: Mutex::new(None),
+        });
+        for index in 1..threads {
+            let control = Arc::clone(&control);
+            pool.spawn(move || serve(&control, index));
+        }
+        Some(StepThreads { control })
+    }
+
+    /// How many threads share the work (the calling thread among them).
+    pub fn count(&self) -> usize {
+        self.control.threads
+    }
+
+    /// Runs `work` on every thread, the calling thread as thread 0, and returns when all have
+    /// finished it. A panic on any thread releases the others from their barriers and is passed
+    /// on once all have stopped.
+    pub fn run(&self, work: impl Fn(SolverThread) + Sync) {
+        let control = &*self.control;
+        let borrowed: &Work<'_> = &work;
+        // SAFETY: only the lifetime is erased. The pool's threads call the work only between
+        // the `posted` increment below and their `finished` increment, and this function does
+        // not return (nor unwind) before every one of them has finished: `work` outlives every
+        // use. No thread reads `work` now (all finished the last piece before the last `run`
+        // returned), so the write does not race.
+        unsafe {
+            let erased: *const Work<'static> = std::mem::transmute(borrowed as *const Work<'_>);
+            *control.work.get() = Some(erased);
+        }
+        let number = control.posted.fetch_add(1, Ordering::Release) + 1;
+        let own = catch_unwind(AssertUnwindSafe(|| work(SolverThread::new(0, &control.barrier))));
+        if own.is_err() {
+            control.barrier.poison();
+        }
+        let mut spins = 0;
+        while control.finished.load(Ordering::Acquire) < number * (control.threads - 1) {
+            backoff(&mut spins);
+        }
+        let theirs = control.panic.lock().map(|mut p| p.take()).unwrap_or(None);
+        // Pass on the panic that caused the others (they only stopped waiting for it).
+        match (own, theirs) {
+            (Err(mine), Some(other)) if mine.downcast_ref::<&str>() == Some(&RELEASED) => {
+                resume_unwind(other)
+            }
+            (Err(mine), _) => resume_unwind(mine),
+            (Ok(()), Some(other)) => resume_unwind(other),
+            (Ok(()), None) => {}
+        }
+    }
+
+    /// Runs `f` on chunks of `chunk` items of `a` and the matching items of `b` (as long as
+    /// `a`), each chunk on whichever thread claims it next: the chunks differ in cost, and a
+    /// thread that is done with cheap ones takes more. With the chunk's offset in `a`.
+    pub fn for_each_chunk<A: Send, B: Send>(
+        &self,
+        (a, b): (&mut [A], &mut [B]),
+        chunk: usize,
+        f: impl Fn(usize, &mut [A], &mut [B]) + Sync,
+    ) {
+        assert_eq!(a.len(), b.len(), "chunks of two slices of one length");
+        let chunk = chunk.max(1);
+        let len = a.len();
+        let (a, b) = (Shared::new(a), Shared::new(b));
+        let next = AtomicUsize::new(0);
+        self.run(|_| loop {
+            let start = next.fetch_add(1, Ordering::Relaxed) * chunk;
+            if start >= len {
+                break;
+            }
+            let range = start..(start + chunk).min(len);
+            // SAFETY: each chunk is claimed once (the counter), so no two threads touch the same
+            // items, and `run` returns only after every thread has stopped.
+            let (part_a, part_b) = unsafe { (a.slice(range.clone()), b.slice(range)) };
+            f(start, part_a, part_b);
+        });
+    }
+}
+
+impl Drop for StepThreads {
+    fn drop(&mut self) {
+        self.control.closing.store(true, Ordering::Release);
+    }
+}
+
+/// A pool thread's part: run each piece of work as it is posted, until the step ends.
+fn serve(control: &Control, index: usize) {
+    let mut done = 0;
+    loop {
+        let mut spins = 0;
+        while control.posted.load(Ordering::Acquire) == done {
+            if control.closing.load(Ordering::Acquire) {
+                return;
+            }
+            backoff(&mut spins);
+        }
+        done += 1;
+        // SAFETY: see `run`: the piece is alive and not rewritten until this thread has
+        // counted itself finished.
+        let work = unsafe { &*(*control.work.get()).expect("work is posted before it is counted") };
+        if let Err(panic) =
+            catch_unwind(AssertUnwindSafe(|| work(SolverThread::new(index, &control.barrier))))
+        {
+            control.barrier.poison();
+            if panic.downcast_ref::<&str>() != Some(&RELEASED) {
+                if let Ok(mut first) = control.panic.lock() {
+                    first.get_or_insert(panic);
+                }
+            }
+        }
+        control.finished.fetch_add(1, Ordering::Release);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pool(threads: usize) -> rayon::ThreadPool {
+        rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool")
+    }
+
+    #[test]
+    fn every_chunk_is_done_once_whatever_the_threads() {
+        let pool = pool(3);
+        let threads = StepThreads::begin(&pool).expect("three threads");
+        for round in 0..50 {
+            let mut items: Vec<usize> = vec![0; 1000 + round];
+            let mut marks = vec![0u32; items.len()];
+            threads.for_each_chunk((&mut items, &mut marks), 7, |offset, part, marks| {
+                for (i, (item, mark)) in part.iter_mut().zip(marks).enumerate() {
+                    *item = offset + i;
+                    *mark += 1;
+                }
+            });
+            assert!(items.iter().enumerate().all(|(i, &v)| v == i));
+            assert!(marks.iter().all(|&m| m == 1));
+        }
+    }
+
+    #[test]
+    fn stages_meet_at_barriers_and_shares_cover_the_range() {
+        let pool = pool(2);
+        let threads = StepThreads::begin(&pool).expect("two threads");
+        let counts: Vec<AtomicUsize> = (0..100).map(|_| AtomicUsize::new(0)).collect();
+        let stage_one_done = AtomicUsize::new(0);
+        threads.run(|thread| {
+            for i in thread.share(0..100) {
+                counts[i].fetch_add(1, Ordering::Relaxed);
+            }
+            stage_one_done.fetch_add(1, Ordering::Relaxed);
+            thread.sync();
+            // Every thread sees every other's first stage done.
+            assert_eq!(stage_one_done.load(Ordering::Relaxed), 2);
+        });
+        assert!(counts.iter().all(|c| c.load(Ordering::Relaxed) == 1));
+    }
+
+    #[test]
+    fn a_panic_on_a_pool_thread_is_passed_on_and_the_next_step_works() {
+        let pool = pool(2);
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            let threads = StepThreads::begin(&pool).expect("two threads");
+            threads.run(|thread| {
+                if !thread.is_first() {
+                    panic!("pool thread fails");
+                }
+                thread.sync();
+            });
+        }));
+        let payload = result.expect_err("the panic is passed on");
+        assert_eq!(payload.downcast_ref::<&str>(), Some(&"pool thread fails"));
+        let threads = StepThreads::begin(&pool).expect("two threads");
+        let sum = AtomicUsize::new(0);
+        threads.run(|thread| {
+            sum.fetch_add(thread.share(0..10).len(), Ordering::Relaxed);
+        });
+        assert_eq!(sum.load(Ordering::Relaxed), 10);
+    }
+}
