@@ -22,17 +22,17 @@ impl World {
         }
         let start = Instant::now();
         let mut clock = start;
-        // The pool's threads, for this step (step_threads.rs): they wake while the serial
-        // stages below run.
+        // The pool's threads, for the stages up to the solve (step_threads.rs): they wake while
+        // the serial stages below run.
         let pool = self.pool.clone();
-        let threads = pool.as_deref().and_then(StepThreads::begin);
-        let threads = threads.as_ref();
+        let step_threads = pool.as_deref().and_then(StepThreads::begin);
+        let threads = step_threads.as_ref();
 
         // Broad phase: move proxies (unless the last step's finalize left them in place for this
         // step length and no body has changed since), find new pairs; narrow phase: update
         // manifolds (collision/contact_manager.rs).
         if self.proxies_in_place_for != Some(dt) {
-            self.contact_manager.update_proxies(&self.bodies, dt, threads);
+            self.contact_manager.update_proxies(&self.bodies, dt);
         }
         self.profile.lap(Phase::Proxies, &mut clock);
         // Jointed pairs that may not collide, sorted once: each new pair is looked up in them
@@ -65,6 +65,7 @@ impl World {
 
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
         self.solve(dt, threads);
+        drop(step_threads);
         self.isolate_non_finite_bodies();
         self.profile.lap(Phase::Solve, &mut clock);
 
@@ -75,7 +76,7 @@ impl World {
 
         // Move the proxies of the bodies that moved, so queries between steps see the current
         // poses (query.rs); the next step's broad phase then finds them already in place.
-        self.contact_manager.update_proxies(&self.bodies, dt, threads);
+        self.contact_manager.update_proxies(&self.bodies, dt);
         self.proxies_in_place_for = Some(dt);
         self.profile.lap(Phase::Finalize, &mut clock);
 

@@ -1,10 +1,11 @@
 //! The world's threads for the length of one step.
 //!
-//! A step hands work to its threads five times or more (the proxies, the narrow phase, the
-//! solver's gather, its contact preparation and its substeps), with serial work in between. Each
-//! hand-over through the thread pool itself woke sleeping threads: on a two-core virtual machine
-//! a sleeping thread took about 75 µs to start, and the calling thread as long to notice the end
-//! — about 150 µs a hand-over, 0.75 ms of a 7 ms step of the rain scene.
+//! A step hands work to its threads four times (the narrow phase, the solver's gather, its
+//! contact preparation and its substeps), with serial work in between. Each hand-over through
+//! the thread pool itself woke sleeping threads: on a two-core virtual machine a sleeping thread
+//! took about 75 µs to start, and the calling thread as long to notice the end — about 150 µs a
+//! hand-over, with the proxies' update then also threaded 0.75 ms of a 7 ms step of the rain
+//! scene.
 //!
 //! So a step takes the pool's threads once, at its start ([`StepThreads::begin`]): they then wait
 //! for work by spinning (yielding their core between checks after a while) instead of sleeping,
@@ -80,11 +81,6 @@ impl StepThreads {
             pool.spawn(move || serve(&control, index));
         }
         Some(StepThreads { control })
-    }
-
-    /// How many threads share the work (the calling thread among them).
-    pub fn count(&self) -> usize {
-        self.control.threads
     }
 
     /// Runs `work` on every thread, the calling thread as thread 0, and returns when all have
