@@ -201,10 +201,10 @@ pub(crate) fn pair_mut<T>(items: &mut [T], i: usize, j: usize) -> (&mut T, &mut 
 }
 
 /// Contacts below which they are prepared on one thread.
-const PARALLEL_MIN_CONTACTS: usize = 128;
+pub(crate) const PARALLEL_MIN_CONTACTS: usize = 128;
 
 /// Bodies from which the body stages alone make threads worth their barriers.
-const PARALLEL_MIN_BODIES: usize = 1024;
+pub(crate) const PARALLEL_MIN_BODIES: usize = 1024;
 
 /// Bodies a thread gathers at a time.
 const GATHER_CHUNK: usize = 256;
