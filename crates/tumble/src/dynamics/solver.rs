@@ -285,6 +285,7 @@ impl World {
         let count = colouring.colour(
             solved.iter().map(|&i| (store[i as usize].body_a.index(), store[i as usize].body_b.index())),
             &bodies,
+            threads.is_some(),
         );
         contacts.resize(count, ContactConstraint::EMPTY);
         {
