@@ -26,7 +26,7 @@ impl World {
         // The pool's threads, for the stages up to the solve (step_threads.rs): they wake while
         // the serial stages below run. Not for a step none of whose stages would be shared (too
         // few contacts and bodies, as in a lone chain): taking them only cost (a 100-link chain
-        // ran 9% slower on two threads than on one).
+        // ran 5–9% slower on two threads than on one).
         let pool = self.pool.clone();
         let step_threads = pool.as_deref().filter(|_| self.worth_step_threads()).and_then(StepThreads::begin);
         let threads = step_threads.as_ref();
