@@ -32,7 +32,8 @@
 //! at every substep's warm start.
 
 use crate::dynamics::contact_block::{
-    normal_coupling, pack_symmetric, unpack_symmetric, NormalBlock, COUPLING_ENTRIES, MAX_POINTS,
+    normal_coupling, pack_symmetric, unpack_symmetric, NormalBlock, RowSet, ALL_ROWS, COUPLING_ENTRIES,
+    MAX_POINTS,
 };
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
@@ -255,6 +256,9 @@ pub(crate) struct ContactConstraint {
     /// The normal rows' `K` at the step start, used while both bodies are still (see `solve`):
     /// the upper triangle, row by row (`K` is symmetric).
     coupling_start: [f64; COUPLING_ENTRIES],
+    /// The normal rows left free (not released) by the last block solve: the next one's first
+    /// guess (contact_block.rs).
+    free_rows: RowSet,
 }
 
 /// Applies the impulses `pᵢ` at levers `(r_aᵢ, r_bᵢ)` (`−pᵢ` to a, `+pᵢ` to b) at once: one
@@ -312,6 +316,7 @@ impl ContactConstraint {
         torsional_impulse: 0.0,
         softness: Softness::RIGID_VELOCITY,
         coupling_start: [0.0; COUPLING_ENTRIES],
+        free_rows: ALL_ROWS,
     };
 
     /// Stage "prepare" for one manifold, written over this constraint in place — every field (the
@@ -343,6 +348,12 @@ impl ContactConstraint {
         self.rolling_impulse = DVec3::ZERO;
         self.torsional_impulse = 0.0;
         self.softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
+        // The block's first guess: the points that ended the last step carrying load, if any did;
+        // a new contact's points all free.
+        let loaded = points.iter().enumerate().fold(0, |set, (i, p)| {
+            set | (RowSet::from(ctx.warm_starting && p.impulse.normal > 0.0) << i.min(MAX_POINTS - 1))
+        });
+        self.free_rows = if loaded == 0 { ALL_ROWS } else { loaded };
         for (i, pc) in self.points.iter_mut().enumerate() {
             let Some(input) = points.get(i) else {
                 *pc = PointConstraint::EMPTY;
@@ -558,15 +569,16 @@ impl ContactConstraint {
             block.matrix[i][i] += gamma;
             accumulated[i] = pc.normal_impulse;
         }
-        let deltas = block.solve(&accumulated).unwrap_or_else(|| {
+        let (deltas, free_rows) = block.solve(&accumulated, self.free_rows).unwrap_or_else(|| {
             // One by one, each row against its own effective mass.
             let mut deltas = [0.0; MAX_POINTS];
             for i in 0..count {
                 let k = block.matrix[i][i];
                 deltas[i] = if k > 0.0 { (block.rhs[i] / k).max(-accumulated[i]) } else { 0.0 };
             }
-            deltas
+            (deltas, ALL_ROWS)
         });
+        self.free_rows = free_rows;
         let mut total_normal = 0.0;
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let applied = deltas[i];
@@ -745,7 +757,7 @@ impl ContactConstraint {
         for row in 0..count {
             block.matrix[row] = coupling[row];
         }
-        let Some(deltas) = block.solve(&accumulated) else { return };
+        let Some((deltas, _)) = block.solve(&accumulated, ALL_ROWS) else { return };
         for row in 0..block.count {
             let pc = &mut self.points[rows[row]];
             let applied = deltas[row];
