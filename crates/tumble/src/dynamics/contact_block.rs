@@ -323,6 +323,20 @@ mod tests {
         b
     }
 
+    /// A box's face on four coplanar points, each asking for a unit push: unit mass, unit inertia
+    /// about x and y, points at (±1, ±1), so `k_ij = 1 + x_i x_j + y_i y_j` (singular: rank 3).
+    fn face_block() -> NormalBlock {
+        let p = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)];
+        let mut b = NormalBlock { count: 4, ..Default::default() };
+        for i in 0..4 {
+            b.rhs[i] = 1.0;
+            for j in 0..4 {
+                b.matrix[i][j] = 1.0 + p[i].0 * p[j].0 + p[i].1 * p[j].1;
+            }
+        }
+        b
+    }
+
     /// An unconstrained SPD system is solved exactly.
     #[test]
     fn solves_a_positive_system() {
@@ -338,16 +352,7 @@ mod tests {
     /// block picks the equal split.
     #[test]
     fn coplanar_points_share_the_load_equally() {
-        // Unit mass, unit inertia about x and y, points at (±1, ±1): k_ij = 1 + x_i x_j + y_i y_j.
-        let p = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)];
-        let mut b = NormalBlock { count: 4, ..Default::default() };
-        for i in 0..4 {
-            b.rhs[i] = 1.0;
-            for j in 0..4 {
-                b.matrix[i][j] = 1.0 + p[i].0 * p[j].0 + p[i].1 * p[j].1;
-            }
-        }
-        let x = b.solve(&[0.0; 4], ALL_ROWS).unwrap().0;
+        let x = face_block().solve(&[0.0; 4], ALL_ROWS).unwrap().0;
         for v in &x[..4] {
             assert!((v - 0.25).abs() < 1e-6, "{x:?}");
         }
@@ -397,15 +402,7 @@ mod tests {
     /// split holds), and the released set the answer ends with is returned as the next guess.
     #[test]
     fn the_guess_of_free_rows_does_not_change_the_answer() {
-        let p = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)];
-        let mut face = NormalBlock { count: 4, ..Default::default() };
-        for i in 0..4 {
-            face.rhs[i] = 1.0;
-            for j in 0..4 {
-                face.matrix[i][j] = 1.0 + p[i].0 * p[j].0 + p[i].1 * p[j].1;
-            }
-        }
-        let (x, free) = face.solve(&[0.0; 4], 0b0111).unwrap();
+        let (x, free) = face_block().solve(&[0.0; 4], 0b0111).unwrap();
         assert_eq!(free, ALL_ROWS);
         for v in &x[..4] {
             assert!((v - 0.25).abs() < 1e-6, "{x:?}");
