@@ -209,6 +209,14 @@ pub(crate) const PARALLEL_MIN_BODIES: usize = 1024;
 /// Bodies a thread gathers at a time.
 const GATHER_CHUNK: usize = 256;
 
+/// Contacts a thread flags or stores impulses for at a time.
+const CONTACT_CHUNK: usize = 256;
+
+/// Chunks of contacts from which flagging them and storing their impulses is shared between the
+/// threads: below that, the hand-over and the cache lines crossing between cores cost more than
+/// the walk (a 210-box pyramid's 420 contacts ran 2% slower on two threads when shared).
+const PARALLEL_MIN_CONTACT_CHUNKS: usize = 8;
+
 impl World {
     /// Runs the solver stages for one step of `dt` (see the module docs for the order), on the
     /// world's threads if it has them.
@@ -277,10 +285,32 @@ impl World {
         let mut colouring = std::mem::take(&mut self.contact_colouring);
         let mut solved = std::mem::take(&mut self.solved_contacts);
         let (store, world_bodies) = (self.contact_manager.contacts.as_slice(), &self.bodies);
+        // Which contacts take part, as a flag per contact in `solved` (on the threads: each flag
+        // reads a contact, a cache miss apiece), then the places of those flagged, in store order.
         solved.clear();
-        solved.extend(
-            (0..store.len() as u32).filter(|&i| takes_part(&store[i as usize], &bodies, world_bodies)),
-        );
+        solved.resize(store.len(), 0);
+        let flag = |offset: usize, flags: &mut [u32]| {
+            for (i, flag) in flags.iter_mut().enumerate() {
+                *flag = u32::from(takes_part(&store[offset + i], &bodies, world_bodies));
+            }
+        };
+        match threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK) {
+            Some(threads) => {
+                let mut units = vec![(); store.len()];
+                threads.for_each_chunk((&mut solved, &mut units), CONTACT_CHUNK, |offset, flags, _| {
+                    flag(offset, flags)
+                });
+            }
+            None => flag(0, &mut solved),
+        }
+        let mut taken = 0;
+        for i in 0..solved.len() {
+            if solved[i] != 0 {
+                solved[taken] = i as u32;
+                taken += 1;
+            }
+        }
+        solved.truncate(taken);
         let restitution = solved.iter().any(|&i| store[i as usize].material.restitution != 0.0);
         let count = colouring.colour(
             solved.iter().map(|&i| (store[i as usize].body_a.index(), store[i as usize].body_b.index())),
@@ -381,13 +411,28 @@ impl World {
             }
         });
 
-        // Keep the impulses for the next step's warm start (the same contacts in the same order).
+        // Keep the impulses for the next step's warm start (the same contacts in the same order),
+        // on the threads in chunks of the store: each contact's from its constraint, wherever the
+        // colouring put that.
         let store = self.contact_manager.contacts.as_mut_slice();
-        for (input, &i) in solved.iter().enumerate() {
-            let impulses = &mut store[i as usize].impulses;
-            for (slot, impulse) in impulses.iter_mut().zip(contacts[colouring.slot(input)].impulses()) {
-                *slot = impulse;
+        let store_impulses = |offset: usize, part: &mut [Contact]| {
+            let first = solved.partition_point(|&i| (i as usize) < offset);
+            for (input, &i) in solved.iter().enumerate().skip(first) {
+                let Some(contact) = part.get_mut(i as usize - offset) else { break };
+                let impulses = contacts[colouring.slot(input)].impulses();
+                for (slot, impulse) in contact.impulses.iter_mut().zip(impulses) {
+                    *slot = impulse;
+                }
             }
+        };
+        match threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK) {
+            Some(threads) => {
+                let mut units = vec![(); store.len()];
+                threads.for_each_chunk((store, &mut units), CONTACT_CHUNK, |offset, part, _| {
+                    store_impulses(offset, part)
+                });
+            }
+            None => store_impulses(0, store),
         }
         self.solved_contacts = solved;
         self.contact_colouring = colouring;
