@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Tumble's speed-up from one thread to two, measured in alternating rounds.
+
+Each round runs `tumble bench SCENE --runs 1 --threads 1` and then `--threads 2` for every scene
+and setting below (the matched settings of `run.py`'s table and the engine defaults), so that the
+machine's drift over minutes falls on both thread counts alike. It prints, per scene and setting,
+the median steps/s on each thread count, the speed-up of the medians and the range of the
+per-round speed-ups, and checks that both thread counts gave the same quality numbers (the
+results are bit-identical for any thread count).
+
+    python3 bench/speedup.py                 # after `cargo build --release`
+    python3 bench/speedup.py --rounds 7 --out bench/results/DATE-speedup-2-threads-….md
+"""
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+from run import MATCHED, TABLE_STEPS, TUMBLE, machine
+
+SCENES = ["large_pyramid", "rain", "pyramid"]
+
+
+def rate(scene, settings, threads):
+    cmd = [TUMBLE, "bench", scene, "--steps", str(TABLE_STEPS[scene]), "--runs", "1", "--threads", str(threads)]
+    out = subprocess.run(cmd + settings + ["--json"], capture_output=True, text=True, check=True)
+    result = json.loads(out.stdout)
+    return result["steps_per_second"], result["metrics"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--rounds", type=int, default=7)
+    parser.add_argument("--out", help="also write the table (markdown) here")
+    args = parser.parse_args()
+    cases = [(scene, "matched", MATCHED[scene]) for scene in SCENES]
+    cases += [(scene, "default", []) for scene in SCENES if scene != "pyramid"]
+    rates = {(scene, name): ([], []) for scene, name, _ in cases}
+    for r in range(args.rounds):
+        print(f"round {r + 1} of {args.rounds}", file=sys.stderr, flush=True)
+        for scene, name, settings in cases:
+            one, metrics_one = rate(scene, settings, 1)
+            two, metrics_two = rate(scene, settings, 2)
+            if metrics_one != metrics_two:
+                sys.exit(f"{scene} ({name}): one thread gave {metrics_one}, two gave {metrics_two}")
+            rates[(scene, name)][0].append(one)
+            rates[(scene, name)][1].append(two)
+
+    uname, cpu, cores = machine()
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    lines = [
+        f"date: {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}",
+        f"machine: {uname}",
+        f"cpu: {cpu} ({cores} logical cores)",
+        "",
+        f"{args.rounds} alternating rounds of `tumble bench SCENE --steps N --runs 1 --threads 1` and "
+        f"`--threads 2` (`bench/speedup.py`; matched settings as in `bench/run.py`, steps as in the "
+        f"peers table), build {commit}. Both thread counts gave the same quality numbers in every round.",
+        "",
+        "| scene | settings | 1 thread (median steps/s) | 2 threads | speed-up (of medians) | per-round range |",
+        "|---|---|---|---|---|---|",
+    ]
+    for scene, name, _ in cases:
+        one, two = rates[(scene, name)]
+        ratios = [b / a for a, b in zip(one, two)]
+        m1, m2 = statistics.median(one), statistics.median(two)
+        lines.append(
+            f"| {scene} | {name} | {m1:.1f} | {m2:.1f} | {m2 / m1:.2f} | {min(ratios):.2f}–{max(ratios):.2f} |"
+        )
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if args.out:
+        with open(args.out, "w") as f:
+            f.write(text)
+
+
+if __name__ == "__main__":
+    os.chdir(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    main()
