@@ -147,6 +147,25 @@ impl StepThreads {
     }
 }
 
+/// `f(offset, part)` over `items` in chunks of `chunk` on `threads` (see
+/// [`StepThreads::for_each_chunk`]), or over all of them at once on this thread when there are
+/// none. `f` must treat each item on its own, so that the split changes no number.
+pub(crate) fn for_each_chunk_of<T: Send>(
+    threads: Option<&StepThreads>,
+    items: &mut [T],
+    chunk: usize,
+    f: impl Fn(usize, &mut [T]) + Sync,
+) {
+    match threads {
+        Some(threads) => {
+            // A second slice of units: `for_each_chunk` pairs each item with one (they take no room).
+            let mut units = vec![(); items.len()];
+            threads.for_each_chunk((items, &mut units), chunk, |offset, part, _| f(offset, part));
+        }
+        None => f(0, items),
+    }
+}
+
 impl Drop for StepThreads {
     fn drop(&mut self) {
         self.control.closing.store(true, Ordering::Release);

@@ -24,13 +24,13 @@
 //! positive definite, so it has one solution, found by Murty's least-index principal pivoting:
 //! solve with the rows of a guessed set free, then move the first row that breaks a condition
 //! (a free row that would pull, a released row that would approach) to the other set, and repeat.
-//! It ends within `2ⁿ` pivots in exact arithmetic, from any first guess; should round-off make it cycle on a nearly
-//! singular block, projected Gauss–Seidel sweeps give a bounded answer instead. (Releasing every
-//! pulling row at once and never taking one back, as this did before, is not the solution when
-//! rows are coupled: a row pulled below zero only by a coupled row's large pull was dropped with
-//! it; the contact let a corner pass 4 cm into a wall in one substep, and in the relax pass took
-//! back more impulse than the target allowed, which added energy — docs/solver.md, "Fast spinning
-//! bodies".)
+//! It ends within `2ⁿ` pivots in exact arithmetic, from any first guess; should round-off make it
+//! cycle on a nearly singular block, projected Gauss–Seidel sweeps give a bounded answer instead.
+//! (Releasing every pulling row at once and never taking one back, as this did before, is not the
+//! solution when rows are coupled: a row pulled below zero only by a coupled row's large pull was
+//! dropped with it; the contact let a corner pass 4 cm into a wall in one substep, and in the
+//! relax pass took back more impulse than the target allowed, which added energy —
+//! docs/solver.md, "Fast spinning bodies".)
 //!
 //! The first try has every row free; when that fails, the second is the set of free rows the
 //! manifold ended its last pass with (`RowSet`), and pivoting goes on from there. Pass after
@@ -160,11 +160,10 @@ impl NormalBlock {
                 }
             });
             match violated {
-                Some(_) if guess.is_some() => {
-                    let free = guess.take().unwrap_or(ALL_ROWS);
-                    active = std::array::from_fn(|i| free & (1 << i) != 0);
-                }
-                Some(i) => active[i] = !active[i],
+                Some(i) => match guess.take() {
+                    Some(free) => active = std::array::from_fn(|i| free & (1 << i) != 0),
+                    None => active[i] = !active[i],
+                },
                 None => {
                     let free = active.iter().enumerate().fold(0, |set, (i, &a)| set | (RowSet::from(a) << i));
                     return Some((delta, free));

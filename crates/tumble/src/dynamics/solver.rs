@@ -28,7 +28,7 @@ use crate::dynamics::solver_threads::{run_on_threads, ColouredContacts, SolveDat
 use crate::id::SlotPool;
 use crate::math::DVec3;
 use crate::shape::Shape;
-use crate::step_threads::StepThreads;
+use crate::step_threads::{for_each_chunk_of, StepThreads};
 use crate::world::World;
 
 /// Solver settings. The defaults suit 60 Hz steps of everyday objects.
@@ -236,17 +236,12 @@ impl World {
         // body was built on the stack and then copied (a third of the gather's time).
         let count = world_bodies.capacity_index();
         bodies.resize(count, SolverBody::FIXED);
-        match threads.filter(|_| count >= PARALLEL_MIN_BODIES) {
-            Some(threads) => {
-                let mut units = vec![(); count];
-                threads.for_each_chunk((&mut bodies, &mut units), GATHER_CHUNK, |offset, part, _| {
-                    for (i, dst) in part.iter_mut().enumerate() {
-                        *dst = gather(offset + i);
-                    }
-                });
+        let gather_threads = threads.filter(|_| count >= PARALLEL_MIN_BODIES);
+        for_each_chunk_of(gather_threads, &mut bodies, GATHER_CHUNK, |offset, part| {
+            for (i, dst) in part.iter_mut().enumerate() {
+                *dst = gather(offset + i);
             }
-            None => bodies.iter_mut().enumerate().for_each(|(slot, dst)| *dst = gather(slot)),
-        }
+        });
 
         // Prepare joints.
         for (_, joint) in self.joints.iter_mut() {
@@ -294,15 +289,8 @@ impl World {
                 *flag = u32::from(takes_part(&store[offset + i], &bodies, world_bodies));
             }
         };
-        match threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK) {
-            Some(threads) => {
-                let mut units = vec![(); store.len()];
-                threads.for_each_chunk((&mut solved, &mut units), CONTACT_CHUNK, |offset, flags, _| {
-                    flag(offset, flags)
-                });
-            }
-            None => flag(0, &mut solved),
-        }
+        let contact_threads = threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK);
+        for_each_chunk_of(contact_threads, &mut solved, CONTACT_CHUNK, flag);
         let mut taken = 0;
         for i in 0..solved.len() {
             if solved[i] != 0 {
@@ -425,15 +413,8 @@ impl World {
                 }
             }
         };
-        match threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK) {
-            Some(threads) => {
-                let mut units = vec![(); store.len()];
-                threads.for_each_chunk((store, &mut units), CONTACT_CHUNK, |offset, part, _| {
-                    store_impulses(offset, part)
-                });
-            }
-            None => store_impulses(0, store),
-        }
+        let contact_threads = threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK);
+        for_each_chunk_of(contact_threads, store, CONTACT_CHUNK, store_impulses);
         self.solved_contacts = solved;
         self.contact_colouring = colouring;
         self.contact_constraints = contacts;
