@@ -350,9 +350,10 @@ impl ContactConstraint {
         self.softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
         // The block's first guess: the points that ended the last step carrying load, if any did;
         // a new contact's points all free.
-        let loaded = points.iter().enumerate().fold(0, |set, (i, p)| {
-            set | (RowSet::from(ctx.warm_starting && p.impulse.normal > 0.0) << i.min(MAX_POINTS - 1))
-        });
+        let loaded = points[..self.point_count]
+            .iter()
+            .enumerate()
+            .fold(0, |set, (i, p)| set | (RowSet::from(ctx.warm_starting && p.impulse.normal > 0.0) << i));
         self.free_rows = if loaded == 0 { ALL_ROWS } else { loaded };
         for (i, pc) in self.points.iter_mut().enumerate() {
             let Some(input) = points.get(i) else {

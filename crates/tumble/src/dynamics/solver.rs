@@ -280,25 +280,20 @@ impl World {
         let mut colouring = std::mem::take(&mut self.contact_colouring);
         let mut solved = std::mem::take(&mut self.solved_contacts);
         let (store, world_bodies) = (self.contact_manager.contacts.as_slice(), &self.bodies);
-        // Which contacts take part, as a flag per contact in `solved` (on the threads: each flag
-        // reads a contact, a cache miss apiece), then the places of those flagged, in store order.
+        // The places of the contacts that take part, in store order: each place tested (on the
+        // threads: each test reads a contact, a cache miss apiece), then those left out dropped.
+        const LEFT_OUT: u32 = u32::MAX;
         solved.clear();
-        solved.resize(store.len(), 0);
-        let flag = |offset: usize, flags: &mut [u32]| {
-            for (i, flag) in flags.iter_mut().enumerate() {
-                *flag = u32::from(takes_part(&store[offset + i], &bodies, world_bodies));
-            }
-        };
+        solved.resize(store.len(), LEFT_OUT);
         let contact_threads = threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK);
-        for_each_chunk_of(contact_threads, &mut solved, CONTACT_CHUNK, flag);
-        let mut taken = 0;
-        for i in 0..solved.len() {
-            if solved[i] != 0 {
-                solved[taken] = i as u32;
-                taken += 1;
+        for_each_chunk_of(contact_threads, &mut solved, CONTACT_CHUNK, |offset, places| {
+            for (i, place) in places.iter_mut().enumerate() {
+                if takes_part(&store[offset + i], &bodies, world_bodies) {
+                    *place = (offset + i) as u32;
+                }
             }
-        }
-        solved.truncate(taken);
+        });
+        solved.retain(|&place| place != LEFT_OUT);
         let restitution = solved.iter().any(|&i| store[i as usize].material.restitution != 0.0);
         let count = colouring.colour(
             solved.iter().map(|&i| (store[i as usize].body_a.index(), store[i as usize].body_b.index())),
@@ -413,7 +408,6 @@ impl World {
                 }
             }
         };
-        let contact_threads = threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK);
         for_each_chunk_of(contact_threads, store, CONTACT_CHUNK, store_impulses);
         self.solved_contacts = solved;
         self.contact_colouring = colouring;
