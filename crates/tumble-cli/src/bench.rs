@@ -142,6 +142,9 @@ pub fn bench(name: &str, options: &BenchOptions) -> Result<String, String> {
             "threads": scene.world.threads(),
             "quality": quality.to_string(),
             "metrics": metrics,
+            // The last run's final state: equal hashes mean the same bits (for comparing builds
+            // and thread counts).
+            "state_hash": format!("{:016x}", scene.world.state_hash()),
         });
         return Ok(format!("{value}\n"));
     }

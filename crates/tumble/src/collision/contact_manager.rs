@@ -75,11 +75,16 @@ pub(crate) struct ContactManager {
 }
 
 /// One contact's narrow-phase update: whether it is kept, and its event state before and after.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 struct Outcome {
     kept: bool,
     before: bool,
     after: bool,
+}
+
+impl Outcome {
+    /// Kept, and no event: the outcome of a place whose contact was dropped before.
+    const UNCHANGED: Outcome = Outcome { kept: true, before: false, after: false };
 }
 
 impl ContactManager {
@@ -190,7 +195,8 @@ impl ContactManager {
         };
         // Threads only for enough contacts to share (the result is the same either way): for a
         // chain's few contacts they cost more than the work.
-        let Some(threads) = threads.filter(|_| self.contacts.len() >= MIN_SHARED_CHUNKS * NARROW_PHASE_CHUNK)
+        let Some(threads) =
+            threads.filter(|_| self.contacts.places() >= MIN_SHARED_CHUNKS * NARROW_PHASE_CHUNK)
         else {
             // On one thread: drop, update and record in a single walk over the contacts.
             self.contacts.retain(|contact| {
@@ -210,13 +216,16 @@ impl ContactManager {
         };
         // On the threads: whether each contact is kept, and its event state before and after its
         // update; then, on this thread, drop the parted contacts and record the changes in
-        // contact order (a walk that touches only the contacts that changed).
+        // contact order (a walk over the outcomes that touches only the contacts that changed).
         let outcomes = &mut self.outcomes;
         outcomes.clear();
-        outcomes.resize(self.contacts.len(), Outcome::default());
+        outcomes.resize(self.contacts.places(), Outcome::UNCHANGED);
         let contacts = self.contacts.as_mut_slice();
         threads.for_each_chunk((contacts, outcomes), NARROW_PHASE_CHUNK, |_, chunk, outcomes| {
             for (contact, outcome) in chunk.iter_mut().zip(outcomes) {
+                if contact.dropped {
+                    continue; // its proxies may be gone
+                }
                 let before = EventRecorder::state(contact);
                 let Some((a, b)) = kept(contact) else {
                     *outcome = Outcome { kept: false, before, after: before };
@@ -228,16 +237,16 @@ impl ContactManager {
                 *outcome = Outcome { kept: true, before, after: EventRecorder::state(contact) };
             }
         });
-        let mut outcomes = self.outcomes.iter();
-        self.contacts.retain(|contact| {
-            let outcome = outcomes.next().expect("one outcome per contact");
+        for (place, outcome) in self.outcomes.iter().enumerate() {
+            let contact = &self.contacts.as_slice()[place];
             if !outcome.kept {
                 events.record_removed(contact);
+                self.contacts.drop_at(place);
             } else if outcome.before != outcome.after {
                 events.record(contact, outcome.before);
             }
-            outcome.kept
-        });
+        }
+        self.contacts.compact_if_sparse();
         self.events.finish(&self.contacts);
     }
 

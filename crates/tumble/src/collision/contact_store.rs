@@ -6,22 +6,24 @@
 //! links, the solver's gather and store), and a contact is about a kilobyte. A `BTreeMap` keyed by
 //! the pair — the first store — walked its nodes, and inserting or dropping a contact shifted up to
 //! ten neighbours within a node (a tenth of a pile of 2,000 falling balls' step went to those
-//! walks and shifts). The array walks in memory order, drops contacts by compacting in place (the
-//! survivors keep their order), and splits into chunks for the threads without collecting
-//! references first. (Filling each dropped contact's place with the last contact instead moves
-//! far fewer kilobytes, but scatters the order: contacts next to each other no longer touch
-//! bodies next to each other, and the pile of falling balls ran 6% slower on one thread. Measured
-//! again with the step's threads: compacting in place moves about 8,900 of the rain's 12,300
-//! contacts a step, 340 µs on the step's own thread while the other waits, and filling the places
-//! ran the rain and the ragdolls 5–6% faster on two threads and the same on one; but the new
-//! order changes how the solver's colours fall, and the rain's penetration after 120 steps at 3
-//! substeps came out 1.00 cm instead of 0.65 — within that scene's spread from step to step,
-//! 0.4–1.0 cm either way, yet above Rapier's 0.99 in the speed table, whose matched setting would
-//! then need a fourth substep. Left as it is.)
+//! walks and shifts). The array walks in memory order and splits into chunks for the threads
+//! without collecting references first.
 //!
-//! The order is a pure function of the history of the world — the pairs made in each step, in
-//! the broad phase's order — so it is the same on every run and for any thread count, and a
-//! snapshot keeps it.
+//! Dropping a contact leaves it in its place, marked `dropped` and emptied (no manifold, not
+//! touching), and the places are compacted away — the survivors keep their order — only once
+//! they are more than [`DROPPED_SHARE`] of the array. Compacting at every drop moved most of the
+//! array for a few contacts: the pile of falling balls drops about 35 of its 12,500 contacts a
+//! step, and the compaction moved some 8,900 kilobyte contacts, 340 µs of a step on the step's
+//! own thread while the others waited. Now it moves them about once in 20 steps; the walks skip
+//! the dropped places, which they read anyway. (Filling each dropped contact's place with the
+//! last contact instead also moves little, but scatters the order: contacts next to each other
+//! no longer touch bodies next to each other, and a new order changes how the solver's colours
+//! fall, hence every result.)
+//!
+//! The order of the live contacts is a pure function of the history of the world — the pairs made
+//! in each step, in the broad phase's order — so it is the same on every run and for any thread
+//! count, and a snapshot keeps it (it holds the live contacts only: when the dropped places are
+//! compacted away never changes a result).
 
 use rustc_hash::FxHashSet;
 
@@ -31,16 +33,29 @@ use crate::dynamics::contact::Contact;
 /// The pair of proxies of a contact, lower key first.
 pub(crate) type ProxyPair = (ProxyKey, ProxyKey);
 
+/// The share of the array's places that may hold dropped contacts before they are compacted
+/// away, as the divisor of the array's length: a sixteenth.
+const DROPPED_SHARE: usize = 16;
+
 #[derive(Clone, Debug, Default, serde::Deserialize)]
 #[serde(from = "Vec<Contact>")]
 pub(crate) struct ContactStore {
+    /// The contacts in their order, dropped ones included (marked, until compacted away).
     contacts: Vec<Contact>,
-    /// The proxy pair of every contact in `contacts`.
+    /// The proxy pair of every live contact.
     pairs: FxHashSet<ProxyPair>,
+    /// How many places of `contacts` hold dropped contacts.
+    dropped: usize,
 }
 
 impl ContactStore {
+    /// The live contacts.
     pub fn len(&self) -> usize {
+        self.contacts.len() - self.dropped
+    }
+
+    /// The places: live contacts and dropped ones not yet compacted away.
+    pub fn places(&self) -> usize {
         self.contacts.len()
     }
 
@@ -62,27 +77,50 @@ impl ContactStore {
         self.pairs.reserve(additional);
     }
 
-    /// Keeps the contacts for which `keep` is true, in their order.
+    /// Keeps the live contacts for which `keep` is true, in their order, and drops the rest.
     pub fn retain(&mut self, mut keep: impl FnMut(&mut Contact) -> bool) {
-        let pairs = &mut self.pairs;
-        self.contacts.retain_mut(|contact| {
-            let kept = keep(contact);
-            if !kept {
-                pairs.remove(&(contact.proxy_a, contact.proxy_b));
+        for place in 0..self.contacts.len() {
+            if !self.contacts[place].dropped && !keep(&mut self.contacts[place]) {
+                self.drop_at(place);
             }
-            kept
-        });
+        }
+        self.compact_if_sparse();
     }
 
-    pub fn iter(&self) -> std::slice::Iter<'_, Contact> {
-        self.contacts.iter()
+    /// Drops the live contact at `place` (an index into [`ContactStore::as_slice`]); its place
+    /// stays until [`ContactStore::compact_if_sparse`] finds enough of them.
+    pub fn drop_at(&mut self, place: usize) {
+        let contact = &mut self.contacts[place];
+        debug_assert!(!contact.dropped, "a contact is dropped once");
+        self.pairs.remove(&(contact.proxy_a, contact.proxy_b));
+        contact.set_manifold(None);
+        contact.manifold_origin = None;
+        contact.dropped = true;
+        self.dropped += 1;
     }
 
+    /// Removes the dropped contacts' places, keeping the order of the rest, once they are more
+    /// than a [`DROPPED_SHARE`]th of the array.
+    pub fn compact_if_sparse(&mut self) {
+        if self.dropped * DROPPED_SHARE > self.contacts.len() {
+            self.contacts.retain(|contact| !contact.dropped);
+            self.dropped = 0;
+        }
+    }
+
+    /// The live contacts, in their order.
+    pub fn iter(&self) -> impl Iterator<Item = &Contact> + Clone {
+        self.contacts.iter().filter(|contact| !contact.dropped)
+    }
+
+    /// Every place, in order: the live contacts and the dropped ones (`dropped`: no manifold,
+    /// not touching), for walks by index.
     pub fn as_slice(&self) -> &[Contact] {
         &self.contacts
     }
 
-    /// The contacts, to update in place (a contact's pair must not change).
+    /// Every place, to update the live contacts in place (a contact's pair must not change, and
+    /// a dropped one must stay as it is).
     pub fn as_mut_slice(&mut self) -> &mut [Contact] {
         &mut self.contacts
     }
@@ -91,14 +129,18 @@ impl ContactStore {
 impl From<Vec<Contact>> for ContactStore {
     fn from(contacts: Vec<Contact>) -> Self {
         let pairs = contacts.iter().map(|c| (c.proxy_a, c.proxy_b)).collect();
-        ContactStore { contacts, pairs }
+        ContactStore { contacts, pairs, dropped: 0 }
     }
 }
 
-/// Only the contacts are written: the pair set follows from them.
+/// Only the live contacts are written: the pair set follows from them.
 impl serde::Serialize for ContactStore {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        self.contacts.serialize(serializer)
+        if self.dropped == 0 {
+            self.contacts.serialize(serializer)
+        } else {
+            self.iter().collect::<Vec<_>>().serialize(serializer)
+        }
     }
 }
 
@@ -128,15 +170,45 @@ mod tests {
     }
 
     #[test]
+    fn dropped_places_stay_until_they_are_a_sixteenth_and_the_walks_skip_them() {
+        let mut store = ContactStore::default();
+        for i in 0..32 {
+            store.push(contact(2 * i, 2 * i + 1));
+        }
+        let first = |c: &Contact| c.proxy_a.proxy_id().0;
+        // Two of 32 places dropped: not more than a sixteenth, so they stay, invisible to `iter`.
+        store.retain(|c| first(c) != 4 && first(c) != 10);
+        assert_eq!((store.len(), store.places()), (30, 32));
+        assert!(store.as_slice()[2].dropped && store.as_slice()[5].dropped);
+        assert!(store.as_slice()[2].manifold.is_none() && !store.as_slice()[2].touching);
+        assert!(store.iter().all(|c| !c.dropped) && store.iter().count() == 30);
+        assert!(!store.contains((contact(4, 5).proxy_a, contact(4, 5).proxy_b)));
+        // The same pair may be made again while its old place waits: the new one is live.
+        store.push(contact(4, 5));
+        assert_eq!((store.len(), store.places()), (31, 33));
+        // A third drop makes them more than a sixteenth: compacted, the order kept.
+        let order = |s: &ContactStore| s.iter().map(first).collect::<Vec<_>>();
+        let before: Vec<u32> = order(&store).into_iter().filter(|&a| a != 20).collect();
+        store.retain(|c| first(c) != 20);
+        assert_eq!((store.len(), store.places()), (30, 30));
+        assert_eq!(order(&store), before);
+        assert_eq!(store.as_slice().iter().map(first).collect::<Vec<_>>(), before);
+    }
+
+    #[test]
     fn a_snapshot_round_trip_keeps_the_order_and_rebuilds_the_pairs() {
         let mut store = ContactStore::default();
-        for (a, b) in [(5, 6), (0, 1)] {
+        for (a, b) in [(5, 6), (0, 1), (2, 3), (7, 8)] {
             store.push(contact(a, b));
         }
+        // A dropped place is not written.
+        store.drop_at(2);
+        assert_eq!(store.places(), 4);
         let bytes = postcard::to_stdvec(&store).expect("encodes");
         let back: ContactStore = postcard::from_bytes(&bytes).expect("decodes");
         let pairs = |s: &ContactStore| s.iter().map(|c| (c.proxy_a, c.proxy_b)).collect::<Vec<_>>();
         assert_eq!(pairs(&back), pairs(&store));
+        assert_eq!((back.len(), back.places()), (3, 3));
         assert!(pairs(&store).into_iter().all(|p| back.contains(p)));
     }
 }

@@ -35,6 +35,10 @@ pub(crate) struct Contact {
     /// then needs no count of the pair's contacts).
     #[serde(default)]
     pub only_one_of_pair: bool,
+    /// The contact was dropped and waits in its place to be compacted away
+    /// (`collision/contact_store.rs`): it has no manifold and touches nothing.
+    #[serde(skip)]
+    pub dropped: bool,
 }
 
 impl Contact {
@@ -62,6 +66,7 @@ impl Contact {
             sensor,
             touching: false,
             only_one_of_pair,
+            dropped: false,
         }
     }
 
