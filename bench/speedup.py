@@ -5,8 +5,8 @@ Each round runs `tumble bench SCENE --runs 1 --threads 1` and then `--threads 2`
 and setting below (the matched settings of `run.py`'s table and the engine defaults), so that the
 machine's drift over minutes falls on both thread counts alike. It prints, per scene and setting,
 the median steps/s on each thread count, the speed-up of the medians and the range of the
-per-round speed-ups, and checks that both thread counts gave the same quality numbers (the
-results are bit-identical for any thread count).
+per-round speed-ups, and checks that both thread counts gave the same quality numbers and the
+same final state hash (the results are bit-identical for any thread count).
 
     python3 bench/speedup.py                 # after `cargo build --release`
     python3 bench/speedup.py --rounds 7 --out bench/results/DATE-speedup-2-threads-….md
@@ -29,7 +29,8 @@ def rate(scene, settings, threads):
     cmd = [TUMBLE, "bench", scene, "--steps", str(TABLE_STEPS[scene]), "--runs", "1", "--threads", str(threads)]
     out = subprocess.run(cmd + settings + ["--json"], capture_output=True, text=True, check=True)
     result = json.loads(out.stdout)
-    return result["steps_per_second"], result["metrics"]
+    # The final state's hash with the quality numbers: the two thread counts must agree on both.
+    return result["steps_per_second"], (result["metrics"], result["state_hash"])
 
 
 def main():
@@ -59,7 +60,7 @@ def main():
         "",
         f"{args.rounds} alternating rounds of `tumble bench SCENE --steps N --runs 1 --threads 1` and "
         f"`--threads 2` (`bench/speedup.py`; matched settings as in `bench/run.py`, steps as in the "
-        f"peers table), build {commit}. Both thread counts gave the same quality numbers in every round.",
+        f"peers table), build {commit}. Both thread counts gave the same quality numbers and final state hash in every round.",
         "",
         "| scene | settings | 1 thread (median steps/s) | 2 threads | speed-up (of medians) | per-round range |",
         "|---|---|---|---|---|---|",
