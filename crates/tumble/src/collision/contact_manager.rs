@@ -72,6 +72,9 @@ pub(crate) struct ContactManager {
     /// What the threaded narrow phase found for each contact, in contact order.
     #[serde(skip)]
     outcomes: Vec<Outcome>,
+    /// The island links of the contacts, found by the narrow phase (`touching_links`).
+    #[serde(skip)]
+    links: Vec<(u32, u32)>,
 }
 
 /// One contact's narrow-phase update: whether it is kept, and its event state before and after.
@@ -80,11 +83,21 @@ struct Outcome {
     kept: bool,
     before: bool,
     after: bool,
+    /// The contact's island link, if it makes one (see [`island_link`]).
+    link: Option<(u32, u32)>,
 }
 
 impl Outcome {
     /// Kept, and no event: the outcome of a place whose contact was dropped before.
-    const UNCHANGED: Outcome = Outcome { kept: true, before: false, after: false };
+    const UNCHANGED: Outcome = Outcome { kept: true, before: false, after: false, link: None };
+}
+
+/// The link a contact makes between the islands of its bodies, as their slots: touching, not a
+/// sensor, between two dynamic bodies.
+fn island_link(contact: &Contact, a: &Body, b: &Body) -> Option<(u32, u32)> {
+    let linked =
+        contact.touching && !contact.sensor && a.kind == BodyKind::Dynamic && b.kind == BodyKind::Dynamic;
+    linked.then(|| (contact.body_a.index() as u32, contact.body_b.index() as u32))
 }
 
 impl ContactManager {
@@ -198,7 +211,9 @@ impl ContactManager {
         let Some(threads) =
             threads.filter(|_| self.contacts.places() >= MIN_SHARED_CHUNKS * NARROW_PHASE_CHUNK)
         else {
-            // On one thread: drop, update and record in a single walk over the contacts.
+            // On one thread: drop, update, record and link in a single walk over the contacts.
+            let links = &mut self.links;
+            links.clear();
             self.contacts.retain(|contact| {
                 let Some((a, b)) = kept(contact) else {
                     events.record_removed(contact);
@@ -209,6 +224,7 @@ impl ContactManager {
                     update_manifold(contact, a, b, dt);
                     events.record(contact, before);
                 }
+                links.extend(island_link(contact, a, b));
                 true
             });
             self.events.finish(&self.contacts);
@@ -228,16 +244,19 @@ impl ContactManager {
                 }
                 let before = EventRecorder::state(contact);
                 let Some((a, b)) = kept(contact) else {
-                    *outcome = Outcome { kept: false, before, after: before };
+                    *outcome = Outcome { kept: false, before, after: before, link: None };
                     continue;
                 };
                 if a.is_awake() || b.is_awake() {
                     update_manifold(contact, a, b, dt);
                 }
-                *outcome = Outcome { kept: true, before, after: EventRecorder::state(contact) };
+                let after = EventRecorder::state(contact);
+                *outcome = Outcome { kept: true, before, after, link: island_link(contact, a, b) };
             }
         });
+        self.links.clear();
         for (place, outcome) in self.outcomes.iter().enumerate() {
+            self.links.extend(outcome.link);
             let contact = &self.contacts.as_slice()[place];
             if !outcome.kept {
                 events.record_removed(contact);
@@ -251,20 +270,11 @@ impl ContactManager {
     }
 
     /// Body-slot pairs of touching, non-sensor contacts between two dynamic bodies (island links),
-    /// into `links` (cleared first).
-    pub fn touching_links(&self, bodies: &SlotPool<Body>, links: &mut Vec<(u32, u32)>) {
-        links.clear();
-        links.extend(
-            self.contacts
-                .iter()
-                .filter(|c| c.touching && !c.sensor)
-                .filter(|c| {
-                    let dynamic =
-                        |id: BodyId| bodies.get(id.into()).is_some_and(|b| b.kind == BodyKind::Dynamic);
-                    dynamic(c.body_a) && dynamic(c.body_b)
-                })
-                .map(|c| (c.body_a.index() as u32, c.body_b.index() as u32)),
-        );
+    /// in contact order, as the last [`ContactManager::update_contacts`] found them: its walk has
+    /// both bodies at hand (a second walk over the contacts and their bodies for the links was
+    /// most of the rain's wake phase).
+    pub fn touching_links(&self) -> &[(u32, u32)] {
+        &self.links
     }
 }
 
