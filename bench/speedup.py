@@ -38,6 +38,9 @@ def main():
     parser.add_argument("--rounds", type=int, default=7)
     parser.add_argument("--out", help="also write the table (markdown) here")
     args = parser.parse_args()
+    # --out is a path from where the script was called; the runs go from the repository's root.
+    out = os.path.abspath(args.out) if args.out else None
+    os.chdir(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     cases = [(scene, "matched", MATCHED[scene]) for scene in SCENES]
     cases += [(scene, "default", []) for scene in SCENES if scene != "pyramid"]
     rates = {(scene, name): ([], []) for scene, name, _ in cases}
@@ -74,11 +77,10 @@ def main():
         )
     text = "\n".join(lines) + "\n"
     print(text)
-    if args.out:
-        with open(args.out, "w") as f:
+    if out:
+        with open(out, "w") as f:
             f.write(text)
 
 
 if __name__ == "__main__":
-    os.chdir(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     main()
