@@ -8,8 +8,9 @@
 //! Insertion picks a sibling of low surface-area heuristic (SAH) cost — the total area of the
 //! internal nodes the new leaf adds to or grows — by one greedy walk down the tree (Catto, GDC
 //! 2019; the exact branch-and-bound search of Bittner et al. 2012 cost too many node visits).
-//! Height-based rotations on the way back up (AVL-like, as in Box2D v2.4) keep the tree shallow
-//! when objects are inserted in a spatially sorted order.
+//! On the way back up, height-based rotations (AVL-like, as in Box2D v2.4) keep the tree shallow
+//! when objects are inserted in a spatially sorted order, and area-saving swaps of a node with its
+//! sibling's child (`swap_for_area`) win back what the greedy walk gives up.
 //!
 //! Determinism: every operation is a pure function of the tree and its arguments — fixed traversal
 //! order, strict cost comparisons, LIFO node reuse — so the same sequence of operations builds the
