@@ -57,8 +57,6 @@ impl World {
         self.profile.lap(Phase::NarrowPhase, &mut clock);
 
         // Wake sleeping islands that awake bodies touch or are jointed to.
-        self.scratch.contact_links.clear();
-        self.scratch.contact_links.extend_from_slice(self.contact_manager.touching_links());
         self.wake_islands_touched_by_awake_bodies();
         self.profile.lap(Phase::Wake, &mut clock);
 

@@ -67,8 +67,6 @@ impl<'a> UnionFind<'a> {
 /// steady-state step allocates nothing).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct IslandScratch {
-    /// Body-slot pairs of touching contacts between dynamic bodies.
-    pub contact_links: Vec<(u32, u32)>,
     /// Body-slot pairs of unbroken joints.
     pub joint_links: Vec<(u32, u32)>,
     /// Sleeping islands to wake.
@@ -107,13 +105,13 @@ impl World {
     }
 
     /// Wakes the sleeping side of every link between an awake dynamic body and a sleeping one:
-    /// the touching contacts' links (`scratch.contact_links`, filled by the caller) and the
-    /// joints' (gathered here into `scratch.joint_links`).
+    /// the touching contacts' links (as the narrow phase listed them,
+    /// `ContactManager::touching_links`) and the joints' (gathered here into `scratch.joint_links`).
     pub(crate) fn wake_islands_touched_by_awake_bodies(&mut self) {
         let mut scratch = std::mem::take(&mut self.scratch);
         self.gather_joint_links(&mut scratch.joint_links);
         scratch.to_wake.clear();
-        for &(a, b) in scratch.contact_links.iter().chain(&scratch.joint_links) {
+        for &(a, b) in self.contact_manager.touching_links().iter().chain(&scratch.joint_links) {
             let state =
                 |i: u32| self.bodies.iter_slot(i as usize).map(|body| (body.kind, body.sleeping_island));
             if let (Some((ka, ia)), Some((kb, ib))) = (state(a), state(b)) {
@@ -143,7 +141,7 @@ impl World {
     }
 
     /// After a step of `dt`: advance sleep timers, build islands over joints and the touching
-    /// contacts (`scratch.contact_links`), and put to sleep the islands that have rested long
+    /// contacts (`ContactManager::touching_links`), and put to sleep the islands that have rested long
     /// enough.
     pub(crate) fn update_sleep(&mut self, dt: f64) {
         let settings = self.sleep_settings.clone();
@@ -171,7 +169,7 @@ impl World {
                 .iter_slot(i as usize)
                 .is_some_and(|b| b.kind == BodyKind::Dynamic && b.sleeping_island.is_none() && !b.isolated)
         };
-        for &(a, b) in scratch.contact_links.iter().chain(&scratch.joint_links) {
+        for &(a, b) in self.contact_manager.touching_links().iter().chain(&scratch.joint_links) {
             if is_linkable(self, a) && is_linkable(self, b) {
                 sets.union(a, b);
             }
