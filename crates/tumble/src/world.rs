@@ -76,10 +76,10 @@ pub struct World {
     /// The solver's contact rows, kept between steps to reuse the allocation.
     #[serde(skip)]
     pub(crate) contact_constraints: Vec<ContactConstraint>,
-    /// The places in the contact store of the contacts the solver takes this step, in store order
-    /// (kept to reuse the allocation).
+    /// The contacts the solver takes this step (their places in the contact store, and bodies), in
+    /// store order (kept to reuse the allocation).
     #[serde(skip)]
-    pub(crate) solved_contacts: Vec<u32>,
+    pub(crate) solved_contacts: Vec<crate::dynamics::solver::SolvedContact>,
     /// The step length for which the last step's finalize stage moved every moving body's
     /// proxies to its pose and velocity, if no body has changed since: a next step of the same
     /// length need not move them again. Any change through `body_mut` clears it; a loaded world

@@ -280,23 +280,29 @@ impl World {
         let mut colouring = std::mem::take(&mut self.contact_colouring);
         let mut solved = std::mem::take(&mut self.solved_contacts);
         let (store, world_bodies) = (self.contact_manager.contacts.as_slice(), &self.bodies);
-        // The places of the contacts that take part, in store order: each place tested (on the
-        // threads: each test reads a contact, a cache miss apiece), then those left out dropped.
-        const LEFT_OUT: u32 = u32::MAX;
+        // The contacts that take part, in store order: each place tested (on the threads: each test
+        // reads a contact, a cache miss apiece), then those left out dropped. What the serial
+        // stages below need of a contact is copied out in the same read: walking the kilobyte-long
+        // contacts again for their bodies, on one thread, cost the rain a miss per contact.
         solved.clear();
-        solved.resize(store.len(), LEFT_OUT);
+        solved.resize(store.len(), SolvedContact::LEFT_OUT);
         let contact_threads = threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK);
         for_each_chunk_of(contact_threads, &mut solved, CONTACT_CHUNK, |offset, places| {
             for (i, place) in places.iter_mut().enumerate() {
-                if takes_part(&store[offset + i], &bodies, world_bodies) {
-                    *place = (offset + i) as u32;
+                let contact = &store[offset + i];
+                if takes_part(contact, &bodies, world_bodies) {
+                    *place = SolvedContact {
+                        place: (offset + i) as u32,
+                        bodies: (contact.body_a.index() as u32, contact.body_b.index() as u32),
+                        bounces: contact.material.restitution != 0.0,
+                    };
                 }
             }
         });
-        solved.retain(|&place| place != LEFT_OUT);
-        let restitution = solved.iter().any(|&i| store[i as usize].material.restitution != 0.0);
+        solved.retain(|s| s.place != SolvedContact::LEFT_OUT.place);
+        let restitution = solved.iter().any(|s| s.bounces);
         let count = colouring.colour(
-            solved.iter().map(|&i| (store[i as usize].body_a.index(), store[i as usize].body_b.index())),
+            solved.iter().map(|s| (s.bodies.0 as usize, s.bodies.1 as usize)),
             &bodies,
             threads.is_some(),
         );
@@ -306,7 +312,7 @@ impl World {
             // Threads only where there are enough contacts to share (the result is the same).
             run_on_threads(threads.filter(|_| count >= PARALLEL_MIN_CONTACTS), |thread| {
                 for input in thread.share(0..count) {
-                    let contact = &store[solved[input] as usize];
+                    let contact = &store[solved[input].place as usize];
                     coloured.with_slot(thread, input, |slot| {
                         prepare_contact(slot, contact, &bodies, world_bodies, &ctx)
                     });
@@ -315,7 +321,7 @@ impl World {
         }
         let has_joints = self.joints.iter().any(|(_, joint)| joint.solving);
         let mut partition = std::mem::take(&mut self.body_partition);
-        partition.split(&bodies, &contacts, &self.joints);
+        partition.split(&bodies, &solved, &self.joints);
 
         // The substeps, on every thread of the pool at once (solver_threads.rs) — where some stage
         // is split between them: waiting at barriers for stages that are not (a chain of joints)
@@ -399,9 +405,9 @@ impl World {
         // colouring put that.
         let store = self.contact_manager.contacts.as_mut_slice();
         let store_impulses = |offset: usize, part: &mut [Contact]| {
-            let first = solved.partition_point(|&i| (i as usize) < offset);
-            for (input, &i) in solved.iter().enumerate().skip(first) {
-                let Some(contact) = part.get_mut(i as usize - offset) else { break };
+            let first = solved.partition_point(|s| (s.place as usize) < offset);
+            for (input, s) in solved.iter().enumerate().skip(first) {
+                let Some(contact) = part.get_mut(s.place as usize - offset) else { break };
                 let impulses = contacts[colouring.slot(input)].impulses();
                 for (slot, impulse) in contact.impulses.iter_mut().zip(impulses) {
                     *slot = impulse;
@@ -447,12 +453,12 @@ pub(crate) struct BodyPartition {
 impl BodyPartition {
     /// Splits the moving (dynamic or kinematic) bodies by whether a contact row or a solved joint
     /// acts on them; each list in slot order.
-    fn split(&mut self, bodies: &[SolverBody], contacts: &[ContactConstraint], joints: &SlotPool<Joint>) {
+    fn split(&mut self, bodies: &[SolverBody], contacts: &[SolvedContact], joints: &SlotPool<Joint>) {
         self.acted_on.clear();
         self.acted_on.resize(bodies.len(), false);
         for contact in contacts {
-            self.acted_on[contact.body_a] = true;
-            self.acted_on[contact.body_b] = true;
+            self.acted_on[contact.bodies.0 as usize] = true;
+            self.acted_on[contact.bodies.1 as usize] = true;
         }
         for (_, joint) in joints.iter().filter(|(_, joint)| joint.solving) {
             self.acted_on[joint.body_a.index()] = true;
@@ -465,6 +471,22 @@ impl BodyPartition {
             list.push(slot as u32);
         }
     }
+}
+
+/// A contact the solver takes: its place in the contact store, and what the serial stages need of
+/// it (copied out once, on the threads; see `World::solve`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SolvedContact {
+    place: u32,
+    /// The slots of its bodies a and b.
+    bodies: (u32, u32),
+    /// Its restitution is not zero.
+    bounces: bool,
+}
+
+impl SolvedContact {
+    /// A place the solver leaves out.
+    const LEFT_OUT: SolvedContact = SolvedContact { place: u32::MAX, bodies: (0, 0), bounces: false };
 }
 
 /// Whether the solver takes a contact: touching, not a sensor, with a body that can move.
