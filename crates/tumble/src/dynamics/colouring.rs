@@ -28,8 +28,6 @@
 
 use std::ops::Range;
 
-use crate::dynamics::solver_body::SolverBody;
-
 /// Colours before the overflow. Bodies in a box pyramid touch at most about a dozen others.
 const COLOUR_COUNT: usize = 32;
 
@@ -59,25 +57,25 @@ pub(crate) struct ContactColouring {
 }
 
 impl ContactColouring {
-    /// Colours the constraints between the body pairs `pairs` (in input order) and returns how
-    /// many there are; `slot` then gives each one's place in colour order (input order within a
+    /// Colours the constraints between the body pairs `pairs` (in input order) of the
+    /// `body_count` body slots, each body with whether it moves (is dynamic), and returns how many
+    /// there are; `slot` then gives each one's place in colour order (input order within a
     /// colour).
     /// With `by_body`, the constraints within a colour are ordered by body instead (see the
     /// module docs); the solver's result is the same either way.
     pub fn colour(
         &mut self,
-        pairs: impl Iterator<Item = (usize, usize)>,
-        bodies: &[SolverBody],
+        pairs: impl Iterator<Item = ((usize, bool), (usize, bool))>,
+        body_count: usize,
         by_body: bool,
     ) -> usize {
         self.body_colours.clear();
-        self.body_colours.resize(bodies.len(), 0);
+        self.body_colours.resize(body_count, 0);
         self.colour_of.clear();
         self.body_of.clear();
         let mut counts = [0usize; COLOUR_COUNT + 1];
-        for (body_a, body_b) in pairs {
-            let moving = |i: usize| bodies[i].is_dynamic();
-            let lower = match (moving(body_a), moving(body_b)) {
+        for ((body_a, moving_a), (body_b, moving_b)) in pairs {
+            let lower = match (moving_a, moving_b) {
                 (true, true) => body_a.min(body_b),
                 (true, false) => body_a,
                 (false, true) => body_b,
@@ -88,15 +86,15 @@ impl ContactColouring {
                 self.body_of.push(lower as u32);
             }
             let mut used = 0u64;
-            for i in [body_a, body_b] {
-                if moving(i) {
+            for (i, moving) in [(body_a, moving_a), (body_b, moving_b)] {
+                if moving {
                     used |= self.body_colours[i];
                 }
             }
             let colour = (used.trailing_ones() as usize).min(COLOUR_COUNT);
             if colour < COLOUR_COUNT {
-                for i in [body_a, body_b] {
-                    if moving(i) {
+                for (i, moving) in [(body_a, moving_a), (body_b, moving_b)] {
+                    if moving {
                         self.body_colours[i] |= 1 << colour;
                     }
                 }
@@ -114,7 +112,7 @@ impl ContactColouring {
         let mut next: [usize; COLOUR_COUNT + 1] = std::array::from_fn(|colour| runs[colour].start);
         self.slot_of.clear();
         if by_body {
-            self.sort_by_body(bodies.len());
+            self.sort_by_body(body_count);
             self.slot_of.resize(self.colour_of.len(), 0);
             // The colours in body order (see the module docs), then the overflow in input order.
             for &input in &self.by_body {
@@ -187,6 +185,7 @@ impl ContactColouring {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dynamics::solver_body::SolverBody;
     use crate::math::{DQuat, DVec3};
 
     /// Ordered by body, the colours are the same and each colour's run goes by lower moving body;
@@ -202,8 +201,10 @@ mod tests {
         pairs.reverse();
         pairs.swap(3, 17);
         let (mut by_input, mut by_body) = (ContactColouring::default(), ContactColouring::default());
-        assert_eq!(by_input.colour(pairs.iter().copied(), &bodies, false), pairs.len());
-        assert_eq!(by_body.colour(pairs.iter().copied(), &bodies, true), pairs.len());
+        let with_motion =
+            || pairs.iter().map(|&(a, b)| ((a, bodies[a].is_dynamic()), (b, bodies[b].is_dynamic())));
+        assert_eq!(by_input.colour(with_motion(), bodies.len(), false), pairs.len());
+        assert_eq!(by_body.colour(with_motion(), bodies.len(), true), pairs.len());
         assert_eq!(by_input.colour_of, by_body.colour_of);
         assert_eq!(by_input.stages, by_body.stages);
         let lower = |(a, b): (usize, usize)| if a == 0 { b } else { a.min(b) };

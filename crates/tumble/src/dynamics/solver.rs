@@ -294,6 +294,10 @@ impl World {
                     *place = SolvedContact {
                         place: (offset + i) as u32,
                         bodies: (contact.body_a.index() as u32, contact.body_b.index() as u32),
+                        moving: (
+                            bodies[contact.body_a.index()].is_dynamic(),
+                            bodies[contact.body_b.index()].is_dynamic(),
+                        ),
                         bounces: contact.material.restitution != 0.0,
                     };
                 }
@@ -302,8 +306,8 @@ impl World {
         solved.retain(|s| s.place != SolvedContact::LEFT_OUT.place);
         let restitution = solved.iter().any(|s| s.bounces);
         let count = colouring.colour(
-            solved.iter().map(|s| (s.bodies.0 as usize, s.bodies.1 as usize)),
-            &bodies,
+            solved.iter().map(|s| ((s.bodies.0 as usize, s.moving.0), (s.bodies.1 as usize, s.moving.1))),
+            bodies.len(),
             threads.is_some(),
         );
         contacts.resize(count, ContactConstraint::EMPTY);
@@ -480,13 +484,16 @@ pub(crate) struct SolvedContact {
     place: u32,
     /// The slots of its bodies a and b.
     bodies: (u32, u32),
+    /// Whether bodies a and b are dynamic (what the colouring needs of them).
+    moving: (bool, bool),
     /// Its restitution is not zero.
     bounces: bool,
 }
 
 impl SolvedContact {
     /// A place the solver leaves out.
-    const LEFT_OUT: SolvedContact = SolvedContact { place: u32::MAX, bodies: (0, 0), bounces: false };
+    const LEFT_OUT: SolvedContact =
+        SolvedContact { place: u32::MAX, bodies: (0, 0), moving: (false, false), bounces: false };
 }
 
 /// Whether the solver takes a contact: touching, not a sensor, with a body that can move.
