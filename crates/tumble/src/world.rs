@@ -71,6 +71,9 @@ pub struct World {
     /// The solver's per-body working copies, kept between steps to reuse the allocation.
     #[serde(skip)]
     pub(crate) solver_bodies: Vec<SolverBody>,
+    /// Per body slot, what the solver's serial stages ask of the body (kept with `solver_bodies`).
+    #[serde(skip)]
+    pub(crate) solver_body_flags: Vec<crate::dynamics::solver::SlotFlags>,
     /// Broad phase, contacts and their manifolds.
     pub(crate) contact_manager: ContactManager,
     /// The solver's contact rows, kept between steps to reuse the allocation.
@@ -202,6 +205,7 @@ impl World {
             solver_settings: def.solver,
             sleep_settings: def.sleep,
             solver_bodies: Vec::new(),
+            solver_body_flags: Vec::new(),
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
             solved_contacts: Vec::new(),
