@@ -80,10 +80,18 @@ impl RawId {
     }
 }
 
+/// One place of a [`SlotPool`]: its object, if live, and how often the place was freed.
 #[derive(Clone, serde::Serialize, serde::Deserialize)]
-struct Slot<T> {
+pub(crate) struct Slot<T> {
     generation: u32,
     value: Option<T>,
+}
+
+impl<T> Slot<T> {
+    /// The live object here, if any.
+    pub(crate) fn value_mut(&mut self) -> Option<&mut T> {
+        self.value.as_mut()
+    }
 }
 
 /// A pool of slots: insert gives an id, remove frees the slot and bumps its generation.
@@ -177,6 +185,11 @@ impl<T> SlotPool<T> {
         self.slots.iter().enumerate().filter_map(|(i, s)| {
             s.value.as_ref().map(|v| (RawId { index: i as u32, generation: s.generation }, v))
         })
+    }
+
+    /// Every slot, live or free, in slot order (slot `i` at index `i`): to split between threads.
+    pub(crate) fn slots_mut(&mut self) -> &mut [Slot<T>] {
+        &mut self.slots
     }
 
     /// Live objects with their ids, in slot order, mutably.

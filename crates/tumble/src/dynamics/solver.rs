@@ -25,7 +25,7 @@ use crate::dynamics::joint::Joint;
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
 use crate::dynamics::solver_threads::{run_on_threads, ColouredContacts, SolveData};
-use crate::id::SlotPool;
+use crate::id::{Slot, SlotPool};
 use crate::math::DVec3;
 use crate::shape::Shape;
 use crate::step_threads::{for_each_chunk_of, StepThreads};
@@ -428,7 +428,6 @@ impl World {
         };
         for_each_chunk_of(contact_threads, store, CONTACT_CHUNK, store_impulses);
         self.solved_contacts = solved;
-        self.solver_body_flags = flags;
         self.contact_colouring = colouring;
         self.contact_constraints = contacts;
         self.body_partition = partition;
@@ -440,16 +439,26 @@ impl World {
                 joint.store(ctx);
             }
         }
-        self.non_finite_after_solve.clear();
-        for (id, body) in self.bodies.iter_mut() {
-            if body.is_awake() && !body.isolated {
-                bodies[id.index()].write_back(body);
-                if crate::non_finite::left_non_finite(body) {
-                    self.non_finite_after_solve.push(id.index());
+        // On the threads in chunks of slots, each body on its own; the bodies left non-finite are
+        // flagged, and listed after in slot order.
+        let write_back = |offset: usize, slots: &mut [Slot<Body>], part_flags: &mut [SlotFlags]| {
+            for (i, (slot, flag)) in slots.iter_mut().zip(part_flags).enumerate() {
+                if let Some(body) = slot.value_mut().filter(|body| body.is_awake() && !body.isolated) {
+                    bodies[offset + i].write_back(body);
+                    flag.non_finite = crate::non_finite::left_non_finite(body);
                 }
             }
+        };
+        let slots = self.bodies.slots_mut();
+        match threads.filter(|_| slots.len() >= PARALLEL_MIN_BODIES) {
+            Some(threads) => threads.for_each_chunk((slots, &mut flags), GATHER_CHUNK, write_back),
+            None => write_back(0, slots, &mut flags),
         }
+        self.non_finite_after_solve.clear();
+        self.non_finite_after_solve
+            .extend(flags.iter().enumerate().filter(|(_, flag)| flag.non_finite).map(|(slot, _)| slot));
         self.solver_bodies = bodies;
+        self.solver_body_flags = flags;
     }
 }
 
@@ -516,11 +525,19 @@ pub(crate) struct SlotFlags {
     dynamic: bool,
     /// It moves in the position stage (`SolverBody::moves`).
     moves: bool,
+    /// It was written back with a non-finite state (set by the write-back).
+    non_finite: bool,
 }
 
 impl SlotFlags {
     fn of(body: &SolverBody, exists: bool) -> SlotFlags {
-        SlotFlags { exists, movable: body.inv_mass != 0.0, dynamic: body.is_dynamic(), moves: body.moves() }
+        SlotFlags {
+            exists,
+            movable: body.inv_mass != 0.0,
+            dynamic: body.is_dynamic(),
+            moves: body.moves(),
+            non_finite: false,
+        }
     }
 }
 
