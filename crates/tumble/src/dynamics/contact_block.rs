@@ -133,6 +133,7 @@ impl NormalBlock {
         &self,
         accumulated: &[f64; MAX_POINTS],
         free: RowSet,
+        kept: Option<(&mut FreeFactor, RowSet)>,
     ) -> Option<([f64; MAX_POINTS], RowSet)> {
         let n = self.count;
         if n == 1 {
@@ -143,9 +144,14 @@ impl NormalBlock {
         }
         let mut active = [true; MAX_POINTS];
         let mut guess = (free & ALL_ROWS != ALL_ROWS).then_some(free);
+        let mut kept = kept;
         // Murty's method needs at most 2ⁿ pivots in exact arithmetic (one more for the guess).
         for _ in 0..=(1usize << n) + 1 {
-            let delta = self.solve_with(&active, accumulated)?;
+            let delta = match kept.take() {
+                // The first try, every row free, with the factors kept from an earlier pass.
+                Some((factor, key)) => self.solve_all_free(factor, key)?,
+                None => self.solve_with(&active, accumulated)?,
+            };
             let violated = (0..n).find(|&i| {
                 if active[i] {
                     accumulated[i] + delta[i] < 0.0
@@ -201,6 +207,33 @@ impl NormalBlock {
         delta
     }
 
+    /// The increments with every row free, factoring the system only when `factor` does not hold
+    /// its factors for `key` already (and keeping them there). The same numbers as `solve_with`
+    /// with every row active: the same matrix, factored the same way.
+    fn solve_all_free(&self, factor: &mut FreeFactor, key: RowSet) -> Option<[f64; MAX_POINTS]> {
+        let n = self.count;
+        if factor.key != key {
+            let mut m = [[0.0; MAX_POINTS]; MAX_POINTS];
+            let mut scale = 0.0_f64;
+            for i in 0..MAX_POINTS {
+                if i < n {
+                    scale = scale.max(self.matrix[i][i]);
+                    m[i][..n].copy_from_slice(&self.matrix[i][..n]);
+                } else {
+                    m[i][i] = 1.0;
+                }
+            }
+            factor.ldlt = Ldlt::factor(&m, scale)?;
+            factor.key = key;
+        }
+        let mut b = [0.0; MAX_POINTS];
+        b[..n].copy_from_slice(&self.rhs[..n]);
+        let x = factor.ldlt.solve(&b);
+        let mut delta = [0.0; MAX_POINTS];
+        delta[..n].copy_from_slice(&x[..n]);
+        Some(delta)
+    }
+
     /// The increments with the rows in `active` free and the others released (their accumulated
     /// impulse taken away: their increment is fixed at `−accumulated`).
     ///
@@ -246,10 +279,48 @@ impl NormalBlock {
 /// regularisation `ε` of `1e-9` of `scale` (the largest diagonal entry of the rows that matter) so
 /// that the singular systems of coplanar points give their least-norm solution. No square roots:
 /// `L` has a unit diagonal.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 struct Ldlt {
-    l: [[f64; MAX_POINTS]; MAX_POINTS],
+    /// `L` below its unit diagonal, row by row (`lower_index`).
+    l: [f64; LOWER_ENTRIES],
     inv_d: [f64; MAX_POINTS],
+}
+
+/// Entries of a `MAX_POINTS`² matrix strictly below the diagonal.
+const LOWER_ENTRIES: usize = MAX_POINTS * (MAX_POINTS - 1) / 2;
+
+/// Where entry `(i, k)`, `k < i`, of a strictly lower triangle is kept.
+#[inline(always)]
+const fn lower_index(i: usize, k: usize) -> usize {
+    i * (i - 1) / 2 + k
+}
+
+/// The factors of a block with every row free, kept between passes for as long as its matrix
+/// stays the same. A still manifold's `K` is its step-start one for the whole step
+/// (contact_solver.rs), and its matrix `K + Γ` then changes only with which rows are soft (`key`,
+/// a bit per row): a resting manifold factors its block once per step for the solve passes and
+/// once for the relax passes instead of once per pass. Only the first try of `NormalBlock::solve`
+/// uses it; the pivots that may follow factor their own systems.
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
+pub(crate) struct FreeFactor {
+    /// The soft rows the factors are for, or `FreeFactor::NO_KEY`.
+    key: RowSet,
+    ldlt: Ldlt,
+}
+
+impl FreeFactor {
+    /// No key of a block: no factors kept.
+    const NO_KEY: RowSet = RowSet::MAX;
+
+    /// Nothing kept.
+    pub const EMPTY: FreeFactor =
+        FreeFactor { key: Self::NO_KEY, ldlt: Ldlt { l: [0.0; LOWER_ENTRIES], inv_d: [0.0; MAX_POINTS] } };
+
+    /// Forgets the factors (a new step: the manifold's `K` is new).
+    #[inline]
+    pub fn forget(&mut self) {
+        self.key = Self::NO_KEY;
+    }
 }
 
 impl Ldlt {
@@ -281,7 +352,13 @@ impl Ldlt {
                 l[i][j] = s * inv_d[j];
             }
         }
-        Some(Ldlt { l, inv_d })
+        let mut packed = [0.0; LOWER_ENTRIES];
+        for i in 1..MAX_POINTS {
+            for k in 0..i {
+                packed[lower_index(i, k)] = l[i][k];
+            }
+        }
+        Some(Ldlt { l: packed, inv_d })
     }
 
     /// `x` with `L D Lᵀ x = b`.
@@ -291,7 +368,7 @@ impl Ldlt {
         for i in 0..MAX_POINTS {
             let mut s = b[i];
             for k in 0..i {
-                s -= l[i][k] * y[k];
+                s -= l[lower_index(i, k)] * y[k];
             }
             y[i] = s;
         }
@@ -299,7 +376,7 @@ impl Ldlt {
         for i in (0..MAX_POINTS).rev() {
             let mut s = y[i] * self.inv_d[i];
             for k in i + 1..MAX_POINTS {
-                s -= l[k][i] * x[k];
+                s -= l[lower_index(k, i)] * x[k];
             }
             x[i] = s;
         }
@@ -340,7 +417,7 @@ mod tests {
     #[test]
     fn solves_a_positive_system() {
         let b = block(&[&[4.0, 1.0, 0.5], &[1.0, 3.0, 0.2], &[0.5, 0.2, 2.0]], &[1.0, 2.0, 3.0]);
-        let x = b.solve(&[10.0; 4], ALL_ROWS).unwrap().0;
+        let x = b.solve(&[10.0; 4], ALL_ROWS, None).unwrap().0;
         for i in 0..3 {
             let r: f64 = (0..3).map(|j| b.matrix[i][j] * x[j]).sum::<f64>() - b.rhs[i];
             assert!(r.abs() < 1e-8, "residual {r}");
@@ -351,7 +428,7 @@ mod tests {
     /// block picks the equal split.
     #[test]
     fn coplanar_points_share_the_load_equally() {
-        let x = face_block().solve(&[0.0; 4], ALL_ROWS).unwrap().0;
+        let x = face_block().solve(&[0.0; 4], ALL_ROWS, None).unwrap().0;
         for v in &x[..4] {
             assert!((v - 0.25).abs() < 1e-6, "{x:?}");
         }
@@ -364,7 +441,7 @@ mod tests {
         // Points on either side of a long body's centre couple negatively. Alone, row 0 needs
         // +0.5; solved together with row 1, which wants to pull hard, both come out negative.
         let b = block(&[&[2.0, -1.9], &[-1.9, 2.0]], &[1.0, -20.0]);
-        let x = b.solve(&[0.0; 4], ALL_ROWS).unwrap().0;
+        let x = b.solve(&[0.0; 4], ALL_ROWS, None).unwrap().0;
         assert_eq!(x[1], 0.0);
         assert!((x[0] - 0.5).abs() < 1e-8, "{x:?}");
         // Both conditions hold: row 1 is released and does not approach.
@@ -387,7 +464,7 @@ mod tests {
             &[-9.077163161259174, -0.000646214267500958, -10.168401354419347, -10.214360235440127],
         );
         let accumulated = [0.0, 0.6605284165810472, 0.0, 0.0];
-        let x = b.solve(&accumulated, ALL_ROWS).unwrap().0;
+        let x = b.solve(&accumulated, ALL_ROWS, None).unwrap().0;
         for i in 0..4 {
             let total = accumulated[i] + x[i];
             assert!(total >= 0.0 && total < 1.0, "{x:?}");
@@ -401,7 +478,7 @@ mod tests {
     /// split holds), and the released set the answer ends with is returned as the next guess.
     #[test]
     fn the_guess_of_free_rows_does_not_change_the_answer() {
-        let (x, free) = face_block().solve(&[0.0; 4], 0b0111).unwrap();
+        let (x, free) = face_block().solve(&[0.0; 4], 0b0111, None).unwrap();
         assert_eq!(free, ALL_ROWS);
         for v in &x[..4] {
             assert!((v - 0.25).abs() < 1e-6, "{x:?}");
@@ -409,7 +486,7 @@ mod tests {
 
         let pulled = block(&[&[2.0, -1.9], &[-1.9, 2.0]], &[1.0, -20.0]);
         for guess in [ALL_ROWS, 0b01, 0b10, 0b00] {
-            let (x, free) = pulled.solve(&[0.0; 4], guess).unwrap();
+            let (x, free) = pulled.solve(&[0.0; 4], guess, None).unwrap();
             assert_eq!(free & 0b11, 0b01, "guess {guess:b}");
             assert_eq!(x[1], 0.0);
             assert!((x[0] - 0.5).abs() < 1e-8, "guess {guess:b}: {x:?}");
@@ -420,7 +497,7 @@ mod tests {
     #[test]
     fn pulling_rows_are_released() {
         let b = block(&[&[2.0, 1.0], &[1.0, 2.0]], &[3.0, -3.0]);
-        let x = b.solve(&[0.0; 4], ALL_ROWS).unwrap().0;
+        let x = b.solve(&[0.0; 4], ALL_ROWS, None).unwrap().0;
         assert_eq!(x[1], 0.0);
         assert!((x[0] - 1.5).abs() < 1e-8, "{x:?}");
     }

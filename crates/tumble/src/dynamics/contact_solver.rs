@@ -32,8 +32,8 @@
 //! at every substep's warm start.
 
 use crate::dynamics::contact_block::{
-    normal_coupling, pack_symmetric, unpack_symmetric, NormalBlock, RowSet, ALL_ROWS, COUPLING_ENTRIES,
-    MAX_POINTS,
+    normal_coupling, pack_symmetric, unpack_symmetric, FreeFactor, NormalBlock, RowSet, ALL_ROWS,
+    COUPLING_ENTRIES, MAX_POINTS,
 };
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
@@ -259,6 +259,10 @@ pub(crate) struct ContactConstraint {
     /// The normal rows left free (not released) by the last block solve: the next one's first
     /// guess (contact_block.rs).
     free_rows: RowSet,
+    /// The factors of the block with every row free while the pair is still, kept for the solve
+    /// passes (`[1]`) and the relax passes (`[0]`): its `K` is then the step-start one, and the
+    /// factors are the same from pass to pass (contact_block.rs, `FreeFactor`).
+    free_factors: [FreeFactor; 2],
 }
 
 /// Applies the impulses `pᵢ` at levers `(r_aᵢ, r_bᵢ)` (`−pᵢ` to a, `+pᵢ` to b) at once: one
@@ -317,6 +321,7 @@ impl ContactConstraint {
         softness: Softness::RIGID_VELOCITY,
         coupling_start: [0.0; COUPLING_ENTRIES],
         free_rows: ALL_ROWS,
+        free_factors: [FreeFactor::EMPTY; 2],
     };
 
     /// Stage "prepare" for one manifold, written over this constraint in place — every field (the
@@ -355,6 +360,7 @@ impl ContactConstraint {
             .enumerate()
             .fold(0, |set, (i, p)| set | (RowSet::from(ctx.warm_starting && p.impulse.normal > 0.0) << i));
         self.free_rows = if loaded == 0 { ALL_ROWS } else { loaded };
+        self.free_factors.iter_mut().for_each(FreeFactor::forget);
         // Only the manifold's points: the places past `point_count` keep whatever they held, as
         // nothing reads them (a rain of spheres' single points wrote three empty points of 150
         // bytes each beside each one, and preparing is bound by the memory it writes).
@@ -535,6 +541,8 @@ impl ContactConstraint {
         } else {
             normal_coupling(&anchors[..count], n, a, b)
         };
+        // The rows whose compliance is not zero: with a still pair's `K`, they fix the block.
+        let mut soft_rows: RowSet = 0;
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let s = separations[i];
             let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
@@ -564,12 +572,14 @@ impl ContactConstraint {
             // integral term on top of the spring–damper).
             let k_ii = coupling[i][i];
             let gamma = if mass_scale > 0.0 { k_ii * impulse_scale / mass_scale } else { 0.0 };
+            soft_rows |= RowSet::from(gamma != 0.0) << i;
             block.rhs[i] = -(vn + bias) - gamma * (pc.normal_impulse - steady);
             block.matrix[i] = coupling[i];
             block.matrix[i][i] += gamma;
             accumulated[i] = pc.normal_impulse;
         }
-        let (deltas, free_rows) = block.solve(&accumulated, self.free_rows).unwrap_or_else(|| {
+        let kept = still.then(|| (&mut self.free_factors[usize::from(use_bias)], soft_rows));
+        let (deltas, free_rows) = block.solve(&accumulated, self.free_rows, kept).unwrap_or_else(|| {
             // One by one, each row against its own effective mass.
             let mut deltas = [0.0; MAX_POINTS];
             for i in 0..count {
@@ -757,7 +767,7 @@ impl ContactConstraint {
         for row in 0..count {
             block.matrix[row] = coupling[row];
         }
-        let Some((deltas, _)) = block.solve(&accumulated, ALL_ROWS) else { return };
+        let Some((deltas, _)) = block.solve(&accumulated, ALL_ROWS, None) else { return };
         for row in 0..block.count {
             let pc = &mut self.points[rows[row]];
             let applied = deltas[row];
