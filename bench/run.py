@@ -79,7 +79,8 @@ def install(skip):
         sh([sys.executable, "-m", "venv", VENV])
     sh([python, "-m", "pip", "install", "-q", "pybullet", "mujoco"])
     sh(["cargo", "build", "--release", "--locked", "-p", "tumble-cli"], cwd=ROOT)
-    sh(["cargo", "build", "--release", "--manifest-path", os.path.join(BENCH, "rapier", "Cargo.toml")])
+    # From the root, so that both take its .cargo/config.toml (built for this processor).
+    sh(["cargo", "build", "--release", "--manifest-path", os.path.join(BENCH, "rapier", "Cargo.toml")], cwd=ROOT)
     return python
 
 

@@ -12,6 +12,7 @@ pub mod dynamics;
 pub mod events;
 pub mod id;
 pub mod integrate;
+mod lanes;
 pub mod mass;
 pub mod math;
 pub mod non_finite;

@@ -79,6 +79,11 @@ pub struct World {
     /// The solver's contact rows, kept between steps to reuse the allocation.
     #[serde(skip)]
     pub(crate) contact_constraints: Vec<ContactConstraint>,
+    /// Whether still contact manifolds are solved four side by side in SIMD lanes or one at a
+    /// time (contact_lanes.rs); `None` takes lanes where they pay (`GROUPS_PAY`). The same
+    /// numbers either way, which the tests check with it.
+    #[serde(skip)]
+    pub(crate) contacts_in_groups: Option<bool>,
     /// The contacts the solver takes this step (their places in the contact store, and bodies), in
     /// store order (kept to reuse the allocation).
     #[serde(skip)]
@@ -208,6 +213,7 @@ impl World {
             solver_body_flags: Vec::new(),
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
+            contacts_in_groups: None,
             solved_contacts: Vec::new(),
             proxies_in_place_for: None,
             body_partition: Default::default(),

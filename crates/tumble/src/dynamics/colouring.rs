@@ -45,6 +45,8 @@ pub(crate) struct ContactColouring {
     colour_of: Vec<u8>,
     /// See `stages`.
     stages: Vec<(Range<usize>, bool)>,
+    /// Each colour's run (not the overflow's), in order; see `colour_end`.
+    colour_runs: Vec<Range<usize>>,
     /// Per constraint, in input order: its place in colour order.
     slot_of: Vec<usize>,
     /// Per constraint, in input order: the slot of its lower moving body (the order within a
@@ -136,6 +138,8 @@ impl ContactColouring {
             }
         }
 
+        self.colour_runs.clear();
+        self.colour_runs.extend(runs[..COLOUR_COUNT].iter().filter(|run| !run.is_empty()).cloned());
         self.stages.clear();
         for (colour, run) in runs.iter().enumerate() {
             let split = colour < COLOUR_COUNT && run.len() >= PARALLEL_MIN_CONSTRAINTS;
@@ -172,6 +176,14 @@ impl ContactColouring {
     /// `0..count`.
     pub fn slot(&self, input: usize) -> usize {
         self.slot_of[input]
+    }
+
+    /// Where the colour of the constraint at `place` (in colour order) ends, or `None` in the
+    /// overflow. Within one colour no two constraints share a moving body, so any of them can be
+    /// solved side by side (contact_lanes.rs).
+    pub fn colour_end(&self, place: usize) -> Option<usize> {
+        let i = self.colour_runs.partition_point(|run| run.end <= place);
+        self.colour_runs.get(i).filter(|run| run.contains(&place)).map(|run| run.end)
     }
 
     /// The solver's stages over the constraints in colour order: a colour with enough constraints

@@ -46,6 +46,7 @@
 //! (`pack_symmetric`: `K` is built exactly symmetric, so nothing is lost).
 
 use crate::dynamics::solver_body::SolverBody;
+use crate::lanes::Lane;
 use crate::math::DVec3;
 
 /// At most four points per manifold.
@@ -100,21 +101,6 @@ pub(crate) fn pack_symmetric(k: &[[f64; MAX_POINTS]; MAX_POINTS]) -> [f64; COUPL
     packed
 }
 
-/// The symmetric matrix whose upper triangle `pack_symmetric` stored.
-#[inline]
-pub(crate) fn unpack_symmetric(packed: &[f64; COUPLING_ENTRIES]) -> [[f64; MAX_POINTS]; MAX_POINTS] {
-    let mut k = [[0.0; MAX_POINTS]; MAX_POINTS];
-    let mut next = 0;
-    for i in 0..MAX_POINTS {
-        for j in i..MAX_POINTS {
-            k[i][j] = packed[next];
-            k[j][i] = packed[next];
-            next += 1;
-        }
-    }
-    k
-}
-
 /// A dense system `(K + Γ) Δλ = rhs` for up to four rows.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NormalBlock {
@@ -142,6 +128,7 @@ impl NormalBlock {
             let delta = if k > 0.0 { (self.rhs[0] / k).max(-accumulated[0]) } else { return None };
             return Some(([delta, 0.0, 0.0, 0.0], ALL_ROWS));
         }
+        let live: [bool; MAX_POINTS] = std::array::from_fn(|i| i < n);
         let mut active = [true; MAX_POINTS];
         let mut guess = (free & ALL_ROWS != ALL_ROWS).then_some(free);
         let mut kept = kept;
@@ -150,30 +137,18 @@ impl NormalBlock {
             let delta = match kept.take() {
                 // The first try, every row free, with the factors kept from an earlier pass.
                 Some((factor, key)) => self.solve_all_free(factor, key)?,
-                None => self.solve_with(&active, accumulated)?,
+                None => match try_rows(&self.matrix, &self.rhs, accumulated, &live, &active) {
+                    (delta, true) => delta,
+                    (_, false) => return None,
+                },
             };
-            let violated = (0..n).find(|&i| {
-                if active[i] {
-                    accumulated[i] + delta[i] < 0.0
-                } else {
-                    // A released row's velocity error; round-off may leave it a hair below zero.
-                    let (mut w, mut scale) = (-self.rhs[i], self.rhs[i].abs());
-                    for j in 0..n {
-                        w += self.matrix[i][j] * delta[j];
-                        scale += (self.matrix[i][j] * delta[j]).abs();
-                    }
-                    w < -1e-9 * scale
-                }
-            });
-            match violated {
+            let violated = violations(&self.matrix, &self.rhs, accumulated, &live, &active, &delta);
+            match violated.iter().position(|&v| v) {
                 Some(i) => match guess.take() {
                     Some(free) => active = std::array::from_fn(|i| free & (1 << i) != 0),
                     None => active[i] = !active[i],
                 },
-                None => {
-                    let free = active.iter().enumerate().fold(0, |set, (i, &a)| set | (RowSet::from(a) << i));
-                    return Some((delta, free));
-                }
+                None => return Some((delta, row_set::<f64>(&active, 0))),
             }
         }
         // Pivoting did not settle: on a nearly singular block (two points almost on top of each
@@ -183,6 +158,24 @@ impl NormalBlock {
         // the exact minimiser of the block's quadratic along that row, so the solution can only
         // come closer.
         Some((self.projected_gauss_seidel(accumulated), ALL_ROWS))
+    }
+
+    /// `solve`, or where the block cannot be factored its rows one by one, each against its own
+    /// effective mass (then every row counts as free).
+    pub fn solve_or_one_by_one(
+        &self,
+        accumulated: &[f64; MAX_POINTS],
+        free: RowSet,
+        kept: Option<(&mut FreeFactor, RowSet)>,
+    ) -> ([f64; MAX_POINTS], RowSet) {
+        self.solve(accumulated, free, kept).unwrap_or_else(|| {
+            let mut deltas = [0.0; MAX_POINTS];
+            for i in 0..self.count {
+                let k = self.matrix[i][i];
+                deltas[i] = if k > 0.0 { (self.rhs[i] / k).max(-accumulated[i]) } else { 0.0 };
+            }
+            (deltas, ALL_ROWS)
+        })
     }
 
     /// Sweeps of projected Gauss–Seidel over the rows from zero increments: each row solved
@@ -233,46 +226,82 @@ impl NormalBlock {
         delta[..n].copy_from_slice(&x[..n]);
         Some(delta)
     }
+}
 
-    /// The increments with the rows in `active` free and the others released (their accumulated
-    /// impulse taken away: their increment is fixed at `−accumulated`).
-    ///
-    /// Always a 4×4 system, whatever the count: a released or unused row becomes a unit row with a
-    /// zero right-hand side (its solution is 0, and it couples to nothing), so the factorisation
-    /// has fixed loop bounds the compiler unrolls.
-    fn solve_with(
-        &self,
-        active: &[bool; MAX_POINTS],
-        accumulated: &[f64; MAX_POINTS],
-    ) -> Option<[f64; MAX_POINTS]> {
-        let n = self.count;
-        let free = |i: usize| i < n && active[i];
-        let mut m = [[0.0; MAX_POINTS]; MAX_POINTS];
-        let mut b = [0.0; MAX_POINTS];
-        let mut scale = 0.0_f64;
-        for i in 0..MAX_POINTS {
-            if !free(i) {
-                m[i][i] = 1.0;
-                continue;
-            }
-            scale = scale.max(self.matrix[i][i]);
-            b[i] = self.rhs[i];
-            for j in 0..MAX_POINTS {
-                if free(j) {
-                    m[i][j] = self.matrix[i][j];
-                } else if j < n {
-                    b[i] += self.matrix[i][j] * accumulated[j];
-                }
-            }
+/// One try of the pivoting, per lane: the increments with the live rows in `active` free and the
+/// others released (their accumulated impulse taken away: their increment is fixed at
+/// `−accumulated`), and whether the system could be factored (where it could not, the block has
+/// no answer).
+///
+/// Always a 4×4 system, whatever the count: a released or missing row becomes a unit row with a
+/// zero right-hand side (its solution is 0, and it couples to nothing), so the factorisation has
+/// fixed loop bounds the compiler unrolls.
+#[inline(always)]
+pub(crate) fn try_rows<L: Lane>(
+    matrix: &[[L; MAX_POINTS]; MAX_POINTS],
+    rhs: &[L; MAX_POINTS],
+    accumulated: &[L; MAX_POINTS],
+    live: &[L::Mask; MAX_POINTS],
+    active: &[L::Mask; MAX_POINTS],
+) -> ([L; MAX_POINTS], L::Mask) {
+    let (zero, one, minus_zero) = (L::splat(0.0), L::splat(1.0), L::splat(-0.0));
+    let free: [L::Mask; MAX_POINTS] = std::array::from_fn(|i| live[i] & active[i]);
+    let mut m = [[zero; MAX_POINTS]; MAX_POINTS];
+    let mut b = [zero; MAX_POINTS];
+    let mut scale = zero;
+    let mut any_free = L::mask_splat(false);
+    for i in 0..MAX_POINTS {
+        any_free = any_free | free[i];
+        scale = L::select(free[i], Lane::max(scale, matrix[i][i]), scale);
+        // A free row: its entries in the free columns, and the released rows' impulses taken
+        // away on its right-hand side (adding `−0` where a column is not released: no change).
+        let mut bi = rhs[i];
+        for j in 0..MAX_POINTS {
+            let released = !free[j] & live[j];
+            bi = bi + L::select(released, matrix[i][j] * accumulated[j], minus_zero);
+            let entry = L::select(free[j], matrix[i][j], zero);
+            m[i][j] = if i == j { L::select(free[i], entry, one) } else { L::select(free[i], entry, zero) };
         }
-        let any_free = (0..n).any(free);
-        let x = if any_free { Ldlt::factor(&m, scale)?.solve(&b) } else { [0.0; MAX_POINTS] };
-        let mut delta = [0.0; MAX_POINTS];
-        for i in 0..n {
-            delta[i] = if free(i) { x[i] } else { -accumulated[i] };
-        }
-        Some(delta)
+        b[i] = L::select(free[i], bi, zero);
     }
+    let (factors, positive) = factor_lanes(&m, scale);
+    let x = factors.solve(&b);
+    let delta = std::array::from_fn(|i| {
+        L::select(live[i], L::select(free[i], L::select(any_free, x[i], zero), -accumulated[i]), zero)
+    });
+    (delta, positive | !any_free)
+}
+
+/// Per row, whether the increments `delta` break a condition of the complementarity problem: a
+/// free row (in `active`) that would pull, a released row that would approach (round-off may
+/// leave its velocity error a hair below zero).
+#[inline(always)]
+pub(crate) fn violations<L: Lane>(
+    matrix: &[[L; MAX_POINTS]; MAX_POINTS],
+    rhs: &[L; MAX_POINTS],
+    accumulated: &[L; MAX_POINTS],
+    live: &[L::Mask; MAX_POINTS],
+    active: &[L::Mask; MAX_POINTS],
+    delta: &[L; MAX_POINTS],
+) -> [L::Mask; MAX_POINTS] {
+    let (zero, minus_zero) = (L::splat(0.0), L::splat(-0.0));
+    std::array::from_fn(|i| {
+        let pulls = (accumulated[i] + delta[i]).lt(zero);
+        let (mut w, mut scale) = (-rhs[i], rhs[i].abs());
+        for j in 0..MAX_POINTS {
+            let term = matrix[i][j] * delta[j];
+            w = w + L::select(live[j], term, minus_zero);
+            scale = scale + L::select(live[j], term.abs(), minus_zero);
+        }
+        let approaches = w.lt(L::splat(-1e-9) * scale);
+        live[i] & L::select_mask(active[i], pulls, approaches)
+    })
+}
+
+/// Lane `k` of the rows in `rows` as a row set.
+#[inline(always)]
+pub(crate) fn row_set<L: Lane>(rows: &[L::Mask; MAX_POINTS], k: usize) -> RowSet {
+    rows.iter().enumerate().fold(0, |set, (i, &row)| set | (RowSet::from(L::mask_lane(row, k)) << i))
 }
 
 /// The factors `L D Lᵀ = m + εI` of a symmetric positive (semi-)definite 4×4 system, with a
@@ -326,57 +355,76 @@ impl FreeFactor {
 impl Ldlt {
     /// `None` when the matrix is not positive (a degenerate manifold).
     fn factor(m: &[[f64; MAX_POINTS]; MAX_POINTS], scale: f64) -> Option<Ldlt> {
-        if !(scale > 0.0 && scale.is_finite()) {
-            return None;
-        }
-        let epsilon = 1e-9 * scale;
-        let mut l = [[0.0; MAX_POINTS]; MAX_POINTS];
-        let mut d = [0.0; MAX_POINTS];
-        let mut inv_d = [0.0; MAX_POINTS];
-        for j in 0..MAX_POINTS {
-            let mut dj = m[j][j] + epsilon;
-            for k in 0..j {
-                dj -= l[j][k] * l[j][k] * d[k];
-            }
-            if !(dj > 0.0) {
-                return None;
-            }
-            d[j] = dj;
-            inv_d[j] = 1.0 / dj;
-            l[j][j] = 1.0;
-            for i in j + 1..MAX_POINTS {
-                let mut s = m[i][j];
-                for k in 0..j {
-                    s -= l[i][k] * l[j][k] * d[k];
-                }
-                l[i][j] = s * inv_d[j];
-            }
-        }
-        let mut packed = [0.0; LOWER_ENTRIES];
-        for i in 1..MAX_POINTS {
-            for k in 0..i {
-                packed[lower_index(i, k)] = l[i][k];
-            }
-        }
-        Some(Ldlt { l: packed, inv_d })
+        let (factors, positive) = factor_lanes(m, scale);
+        positive.then_some(Ldlt { l: factors.l, inv_d: factors.inv_d })
     }
 
     /// `x` with `L D Lᵀ x = b`.
     fn solve(&self, b: &[f64; MAX_POINTS]) -> [f64; MAX_POINTS] {
+        LdltLanes { l: self.l, inv_d: self.inv_d }.solve(b)
+    }
+}
+
+/// `Ldlt` over a lane type: the factors of one block per lane (contact_lanes.rs factors four
+/// manifolds' blocks at once, with the bits each gets alone).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LdltLanes<L> {
+    l: [L; LOWER_ENTRIES],
+    inv_d: [L; MAX_POINTS],
+}
+
+/// The factors of `m + εI` per lane (see `Ldlt`), and the lanes where `m` is positive (where it is
+/// not, that lane's factors are meaningless).
+pub(crate) fn factor_lanes<L: Lane>(m: &[[L; MAX_POINTS]; MAX_POINTS], scale: L) -> (LdltLanes<L>, L::Mask) {
+    let zero = L::splat(0.0);
+    // `scale > 0` and finite (`scale − scale` is NaN for an infinite or NaN scale).
+    let mut positive = scale.gt(zero) & !(scale - scale).ne(zero);
+    let epsilon = L::splat(1e-9) * scale;
+    let mut l = [[zero; MAX_POINTS]; MAX_POINTS];
+    let mut d = [zero; MAX_POINTS];
+    let mut inv_d = [zero; MAX_POINTS];
+    for j in 0..MAX_POINTS {
+        let mut dj = m[j][j] + epsilon;
+        for k in 0..j {
+            dj = dj - l[j][k] * l[j][k] * d[k];
+        }
+        positive = positive & dj.gt(zero);
+        d[j] = dj;
+        inv_d[j] = L::splat(1.0) / dj;
+        for i in j + 1..MAX_POINTS {
+            let mut s = m[i][j];
+            for k in 0..j {
+                s = s - l[i][k] * l[j][k] * d[k];
+            }
+            l[i][j] = s * inv_d[j];
+        }
+    }
+    let mut packed = [zero; LOWER_ENTRIES];
+    for i in 1..MAX_POINTS {
+        for k in 0..i {
+            packed[lower_index(i, k)] = l[i][k];
+        }
+    }
+    (LdltLanes { l: packed, inv_d }, positive)
+}
+
+impl<L: Lane> LdltLanes<L> {
+    /// `x` with `L D Lᵀ x = b`.
+    pub fn solve(&self, b: &[L; MAX_POINTS]) -> [L; MAX_POINTS] {
         let l = &self.l;
-        let mut y = [0.0; MAX_POINTS];
+        let mut y = [L::splat(0.0); MAX_POINTS];
         for i in 0..MAX_POINTS {
             let mut s = b[i];
             for k in 0..i {
-                s -= l[lower_index(i, k)] * y[k];
+                s = s - l[lower_index(i, k)] * y[k];
             }
             y[i] = s;
         }
-        let mut x = [0.0; MAX_POINTS];
+        let mut x = [L::splat(0.0); MAX_POINTS];
         for i in (0..MAX_POINTS).rev() {
             let mut s = y[i] * self.inv_d[i];
             for k in i + 1..MAX_POINTS {
-                s -= l[lower_index(k, i)] * x[k];
+                s = s - l[lower_index(k, i)] * x[k];
             }
             x[i] = s;
         }

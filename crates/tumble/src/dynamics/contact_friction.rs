@@ -31,15 +31,15 @@ pub(crate) struct PatchFriction {
     r_b_local: DVec3,
     /// The shared levers of the centre at the step start: used while both bodies are still, as
     /// the normal rows use theirs (contact_solver.rs, `solve_normals`).
-    levers_start: (DVec3, DVec3),
+    pub levers_start: (DVec3, DVec3),
     /// Each point's distance from the centre in the tangent plane (the twist row's lever arms).
-    twist_arms: [f64; MAX_POINTS],
+    pub twist_arms: [f64; MAX_POINTS],
     /// Inverse of the 2×2 tangent effective mass at the centre, embedded in 3×3 over the plane,
     /// and the isotropic tangent effective mass `2 / trace(K_t)` that steers sliding friction (see
     /// `solve`), both from the step start. (Built from the levers of every pass instead, as the
     /// normal rows are, a ragdoll lying on the ground no longer came to rest within 10 s (J6); the
     /// friction bound `μΣλ_n` keeps what a mismatched mass can do in check.)
-    tangent_masses: (DMat3, f64),
+    pub tangent_masses: (DMat3, f64),
     /// Accumulated friction impulse per substep, on body b, world frame.
     pub tangent_impulse: DVec3,
     /// Accumulated twist impulse about the normal, on body b.

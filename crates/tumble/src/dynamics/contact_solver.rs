@@ -32,8 +32,7 @@
 //! at every substep's warm start.
 
 use crate::dynamics::contact_block::{
-    normal_coupling, pack_symmetric, unpack_symmetric, FreeFactor, NormalBlock, RowSet, ALL_ROWS,
-    COUPLING_ENTRIES, MAX_POINTS,
+    normal_coupling, pack_symmetric, FreeFactor, NormalBlock, RowSet, ALL_ROWS, COUPLING_ENTRIES, MAX_POINTS,
 };
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
@@ -139,13 +138,6 @@ impl PointConstraint {
         let moved_b = b.dp + (r_b - self.r_b0);
         let moved_a = a.dp + (r_a - self.r_a0);
         self.base_separation + n.dot(moved_b - moved_a)
-    }
-
-    /// The normal row's angular Jacobians at the step start, `r_a0 × n` and `r_b0 × n`: while both
-    /// bodies are still the row is linear in them (see `ContactConstraint::solve_normals`).
-    #[inline]
-    fn arms_start(&self, n: DVec3) -> (DVec3, DVec3) {
-        (self.r_a0.cross(n), self.r_b0.cross(n))
     }
 
     const EMPTY: PointConstraint = PointConstraint {
@@ -416,15 +408,15 @@ impl ContactConstraint {
 
     /// Stage "warm start": apply the accumulated impulses again.
     pub fn warm_start(&self, a: &mut SolverBody, b: &mut SolverBody) {
-        if !self.has_impulse() {
-            return;
-        }
         let radii = self.radii;
-        let count = self.point_count;
         if linear_pair(radii, a, b) {
-            let normal_impulses: [f64; MAX_POINTS] = std::array::from_fn(|i| self.points[i].normal_impulse);
-            self.apply_still_normal_impulses(a, b, &normal_impulses);
+            // Still: the rows linear in the step-start levers (contact_lanes.rs).
+            self.warm_start_still(a, b);
         } else {
+            if !self.has_impulse() {
+                return;
+            }
+            let count = self.point_count;
             let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
             let mut impulses = [DVec3::ZERO; MAX_POINTS];
             for (i, pc) in self.points[..count].iter().enumerate() {
@@ -432,34 +424,41 @@ impl ContactConstraint {
                 impulses[i] = pc.normal_impulse * self.normal;
             }
             apply_point_impulses(a, b, &levers[..count], &impulses[..count]);
+            self.friction.warm_start(radii, self.normal, self.com_offset, a, b);
         }
-        self.friction.warm_start(radii, self.normal, self.com_offset, a, b);
-        let angular = self.rolling_impulse + self.torsional_impulse * self.normal;
-        a.w -= a.inv_inertia * angular;
-        b.w += b.inv_inertia * angular;
+        // Zero without torsional and rolling friction (and then no change to ω at all).
+        if !self.fits_lanes() {
+            let angular = self.rolling_impulse + self.torsional_impulse * self.normal;
+            a.w -= a.inv_inertia * angular;
+            b.w += b.inv_inertia * angular;
+        }
     }
 
     /// Stage "solve" (`use_bias`) or "relax" (`!use_bias`).
     pub fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, ctx: &StepContext, use_bias: bool) {
         let radii = self.radii;
         let n = self.normal;
-        let Some(total_normal) = self.solve_normals(a, b, ctx, use_bias) else {
-            return;
+        let total_normal = if linear_pair(radii, a, b) {
+            // Still: the rows linear in the step-start levers, with friction (contact_lanes.rs).
+            let Some(total_normal) = self.solve_still(a, b, ctx, use_bias) else { return };
+            total_normal
+        } else {
+            let Some(total_normal) = self.solve_normals(a, b, ctx, use_bias) else { return };
+            let mut normal_impulses = [0.0; MAX_POINTS];
+            for (l, pc) in normal_impulses.iter_mut().zip(&self.points[..self.point_count]) {
+                *l = pc.normal_impulse;
+            }
+            self.friction.solve(
+                radii,
+                n,
+                self.com_offset,
+                self.material.friction,
+                &normal_impulses[..self.point_count],
+                a,
+                b,
+            );
+            total_normal
         };
-
-        let mut normal_impulses = [0.0; MAX_POINTS];
-        for (l, pc) in normal_impulses.iter_mut().zip(&self.points[..self.point_count]) {
-            *l = pc.normal_impulse;
-        }
-        self.friction.solve(
-            radii,
-            n,
-            self.com_offset,
-            self.material.friction,
-            &normal_impulses[..self.point_count],
-            a,
-            b,
-        );
 
         // Torsional and rolling friction, bounded by the manifold's total normal impulse.
         // Their effective masses from the inverse inertias as they are now, as for the normal
@@ -507,7 +506,6 @@ impl ContactConstraint {
         ctx: &StepContext,
         use_bias: bool,
     ) -> Option<f64> {
-        let radii = self.radii;
         let n = self.normal;
         let count = self.point_count;
         // The load the manifold carries at rest, shared evenly: the soft rows give way only to the
@@ -517,13 +515,10 @@ impl ContactConstraint {
             self.points[..count].iter().map(|pc| pc.steady_normal_impulse).sum::<f64>() / count.max(1) as f64;
         let mut block = NormalBlock { count, ..Default::default() };
         let mut accumulated = [0.0; MAX_POINTS];
-        // Still pairs (both bodies moved under 1 mm and turned under 1 mrad since the step began)
-        // take the rows linear in the step-start levers (see `rows_now`), except on a round side.
-        let still = linear_pair(radii, a, b);
         let mut anchors = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
         let mut separations = [0.0; MAX_POINTS];
         let mut normal_velocities = [0.0; MAX_POINTS];
-        self.rows_now(a, b, still, (&mut separations, &mut normal_velocities, &mut anchors));
+        self.rows_now(a, b, (&mut separations, &mut normal_velocities, &mut anchors));
         if self.is_idle(&normal_velocities[..count], &separations[..count], ctx) {
             return None;
         }
@@ -532,17 +527,8 @@ impl ContactConstraint {
         // overshoots its target by `f`: beyond `f = 2` every such impulse adds energy. A stick
         // spinning at 300 rad/s turns 1.25 rad per substep, its corner's `K` changes by up to
         // 4×, and the phantom levers of far speculative points (see `prepare`) by 60×.
-        // While both bodies are still (solver_body.rs: moved under 1 mm, turned under 1 mrad since
-        // the step began), the levers have changed by at most that — `K` by a thousandth for
-        // levers of a metre, a few percent for a centimetre-sized body, far below the factor 2
-        // that matters — and the step-start `K` serves.
-        let coupling = if still {
-            unpack_symmetric(&self.coupling_start)
-        } else {
-            normal_coupling(&anchors[..count], n, a, b)
-        };
-        // The rows whose compliance is not zero: with a still pair's `K`, they fix the block.
-        let mut soft_rows: RowSet = 0;
+        // (Still pairs, where the step-start `K` serves, take the rows of contact_lanes.rs.)
+        let coupling = normal_coupling(&anchors[..count], n, a, b);
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
             let s = separations[i];
             let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
@@ -572,22 +558,12 @@ impl ContactConstraint {
             // integral term on top of the spring–damper).
             let k_ii = coupling[i][i];
             let gamma = if mass_scale > 0.0 { k_ii * impulse_scale / mass_scale } else { 0.0 };
-            soft_rows |= RowSet::from(gamma != 0.0) << i;
             block.rhs[i] = -(vn + bias) - gamma * (pc.normal_impulse - steady);
             block.matrix[i] = coupling[i];
             block.matrix[i][i] += gamma;
             accumulated[i] = pc.normal_impulse;
         }
-        let kept = still.then(|| (&mut self.free_factors[usize::from(use_bias)], soft_rows));
-        let (deltas, free_rows) = block.solve(&accumulated, self.free_rows, kept).unwrap_or_else(|| {
-            // One by one, each row against its own effective mass.
-            let mut deltas = [0.0; MAX_POINTS];
-            for i in 0..count {
-                let k = block.matrix[i][i];
-                deltas[i] = if k > 0.0 { (block.rhs[i] / k).max(-accumulated[i]) } else { 0.0 };
-            }
-            (deltas, ALL_ROWS)
-        });
+        let (deltas, free_rows) = block.solve_or_one_by_one(&accumulated, self.free_rows, None);
         self.free_rows = free_rows;
         let mut total_normal = 0.0;
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
@@ -596,36 +572,21 @@ impl ContactConstraint {
             pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
             total_normal += pc.normal_impulse;
         }
-        if still {
-            self.apply_still_normal_impulses(a, b, &deltas);
-        } else {
-            let impulses: [DVec3; MAX_POINTS] = std::array::from_fn(|i| deltas[i] * n);
-            apply_point_impulses(a, b, &anchors[..count], &impulses[..count]);
-        }
+        let impulses: [DVec3; MAX_POINTS] = std::array::from_fn(|i| deltas[i] * n);
+        apply_point_impulses(a, b, &anchors[..count], &impulses[..count]);
         Some(total_normal)
     }
 
-    /// Writes each normal row's separation and normal velocity now, and the levers its impulse
-    /// acts at (the shared levers; not written when `linear`). (Out-parameters: returned as a
-    /// tuple of arrays, the rain and large-pyramid scenes ran 10% slower.)
-    ///
-    /// `linear` is for a still pair with no round side: each row is then linear in the step-start
-    /// levers `r⁰` — a point moved by `Δp + θ × r⁰` and moves at `v + ω × r⁰` (`θ` the body's
-    /// turn since the step began), so `n·` of either is `n·Δp + θ·(r⁰ × n)`. What that leaves out
-    /// is second order, `|r| θ²/2` ≤ 0.5 µm on a lever of a metre, and the levers' own change,
-    /// which the step-start `K` of still pairs leaves out as well. The step-start levers of a
-    /// point lie on one normal line, so the pair's angular momentum is kept exactly, as with the
-    /// shared levers. A resting pile's rows then cost dot products instead of turning every point
-    /// with both bodies. On a round side the lever is the radius from a centre of curvature that
-    /// turns with the body, and held at its step-start offset it lags the turning and feeds a
-    /// rolling body's energy (docs/solver.md, "Still pairs").
+    /// Writes each normal row's separation and normal velocity now, and the shared levers its
+    /// impulse acts at. (Out-parameters: returned as a tuple of arrays, the rain and large-pyramid
+    /// scenes ran 10% slower.) A still pair's rows, linear in the step-start levers, are in
+    /// contact_lanes.rs.
     #[allow(clippy::type_complexity)]
     #[inline(always)]
     fn rows_now(
         &self,
         a: &SolverBody,
         b: &SolverBody,
-        linear: bool,
         (separations, normal_velocities, anchors): (
             &mut [f64; MAX_POINTS],
             &mut [f64; MAX_POINTS],
@@ -633,23 +594,12 @@ impl ContactConstraint {
         ),
     ) {
         let n = self.normal;
-        let count = self.point_count;
-        if linear {
-            let moved = n.dot(b.dp - a.dp);
-            let approach = n.dot(b.v - a.v);
-            for (i, pc) in self.points[..count].iter().enumerate() {
-                let (arm_a, arm_b) = pc.arms_start(n);
-                separations[i] = pc.base_separation + moved + b.turn.dot(arm_b) - a.turn.dot(arm_a);
-                normal_velocities[i] = approach + b.w.dot(arm_b) - a.w.dot(arm_a);
-            }
-        } else {
-            for (i, pc) in self.points[..count].iter().enumerate() {
-                let material = pc.anchors(self.radii, n, a, b);
-                separations[i] = pc.separation(material, a, b, n);
-                let (r_a, r_b) = shared_levers(material, self.com_offset, a, b);
-                anchors[i] = (r_a, r_b);
-                normal_velocities[i] = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
-            }
+        for (i, pc) in self.points[..self.point_count].iter().enumerate() {
+            let material = pc.anchors(self.radii, n, a, b);
+            separations[i] = pc.separation(material, a, b, n);
+            let (r_a, r_b) = shared_levers(material, self.com_offset, a, b);
+            anchors[i] = (r_a, r_b);
+            normal_velocities[i] = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
         }
     }
 
@@ -666,25 +616,6 @@ impl ContactConstraint {
                 .iter()
                 .zip(separations)
                 .all(|(&vn, &s)| s > SOFT_BAND && vn + s * ctx.inv_h >= 0.0)
-    }
-
-    /// Normal impulses `λᵢ n` at the step-start levers of a still pair (see `solve_normals`):
-    /// `−Σλᵢ n` and moments `−Σλᵢ (r_aᵢ × n)` on a, the opposite on b.
-    #[inline]
-    fn apply_still_normal_impulses(
-        &self,
-        a: &mut SolverBody,
-        b: &mut SolverBody,
-        impulses: &[f64; MAX_POINTS],
-    ) {
-        let (mut total, mut torque_a, mut torque_b) = (0.0, DVec3::ZERO, DVec3::ZERO);
-        for (pc, &l) in self.points[..self.point_count].iter().zip(impulses) {
-            let (arm_a, arm_b) = pc.arms_start(self.normal);
-            total += l;
-            torque_a += l * arm_a;
-            torque_b += l * arm_b;
-        }
-        apply_impulse_and_moments(a, b, total * self.normal, torque_a, torque_b);
     }
 
     /// Whether any impulse is accumulated: normal, friction, twist, torsional or rolling.
@@ -791,6 +722,10 @@ impl ContactConstraint {
         })
     }
 }
+
+#[path = "contact_lanes.rs"]
+mod lanes;
+pub(crate) use lanes::{solve_group, warm_start_group, GroupVelocities, GROUP, GROUPS_PAY};
 
 #[cfg(test)]
 #[path = "contact_solver_tests.rs"]

@@ -20,7 +20,9 @@
 use crate::body::{Body, BodyKind};
 use crate::collision::contact_manager::leaf;
 use crate::dynamics::contact::Contact;
-use crate::dynamics::contact_solver::{ContactConstraint, ContactPointInput};
+use crate::dynamics::contact_solver::{
+    solve_group, warm_start_group, ContactConstraint, ContactPointInput, GROUPS_PAY,
+};
 use crate::dynamics::joint::Joint;
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver_body::SolverBody;
@@ -206,6 +208,12 @@ pub(crate) const PARALLEL_MIN_CONTACTS: usize = 128;
 /// Bodies from which the body stages alone make threads worth their barriers.
 pub(crate) const PARALLEL_MIN_BODIES: usize = 1024;
 
+/// Contacts per thread up to which still manifolds are solved in groups of four (contact_lanes.rs).
+/// Beyond, the rows stream from memory, and groups ran slower than manifolds one by one: on the
+/// bench machine (2 MB of L2 per core) a pyramid of 1335 manifolds ran 1.2x faster in groups,
+/// one of 3725 about as fast, one of 5370 0.9x and one of 14950 0.85x (docs/solver.md).
+pub(crate) const GROUPS_MAX_CONTACTS_PER_THREAD: usize = 4096;
+
 /// Bodies a thread gathers at a time.
 const GATHER_CHUNK: usize = 256;
 
@@ -342,6 +350,12 @@ impl World {
             || partition.constrained.len() >= PARALLEL_MIN_BODIES
             || partition.unconstrained.len() >= PARALLEL_MIN_BODIES;
         let threads = threads.filter(|_| worth_threads);
+        // Still manifolds in groups of four where that pays (contact_lanes.rs); the same bits
+        // either way.
+        let thread_count = threads.map_or(1, StepThreads::count);
+        let in_lanes = self
+            .contacts_in_groups
+            .unwrap_or(GROUPS_PAY && contacts.len() <= GROUPS_MAX_CONTACTS_PER_THREAD * thread_count);
         let mut serial = (&mut self.joints, &mut trees);
         let lists = (&partition.constrained[..], &partition.unconstrained[..]);
         let data = SolveData::new(&mut bodies, lists, &mut contacts, &colouring, &mut serial);
@@ -364,10 +378,20 @@ impl World {
             for substep in 0..ctx.substeps {
                 data.bodies(thread, |body| body.integrate_velocity(ctx.gravity, ctx.h));
                 joint_stage(&|joint, a, b| joint.warm_start(a, b));
-                data.contacts_with_bodies(thread, |c, a, b| c.warm_start(a, b));
+                // Still manifolds of a colour go four at a time in SIMD lanes (contact_lanes.rs):
+                // the same numbers as one at a time.
+                data.contacts_in_groups(
+                    thread,
+                    |c, a, b| c.warm_start(a, b),
+                    |cs, bodies| in_lanes.then(|| warm_start_group(cs, bodies)).flatten(),
+                );
                 for _ in 0..ctx.solve_iterations {
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, true));
-                    data.contacts_with_bodies(thread, |c, a, b| c.solve(a, b, ctx, true));
+                    data.contacts_in_groups(
+                        thread,
+                        |c, a, b| c.solve(a, b, ctx, true),
+                        |cs, bodies| in_lanes.then(|| solve_group(cs, bodies, ctx, true)).flatten(),
+                    );
                     if has_joints {
                         data.serial(thread, |(joints, trees), bodies| {
                             trees.solve(joints, bodies, tree_bias_rate)
@@ -395,12 +419,23 @@ impl World {
                 for sweep in 0..ctx.relax_iterations {
                     let last_sweep = sweep + 1 == ctx.relax_iterations;
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, false));
-                    data.contacts_with_bodies(thread, |c, a, b| {
-                        c.solve(a, b, ctx, false);
-                        if learn && last_sweep {
-                            c.update_steady_load(ctx.steady_load_time, ctx.h);
-                        }
-                    });
+                    data.contacts_in_groups(
+                        thread,
+                        |c, a, b| {
+                            c.solve(a, b, ctx, false);
+                            if learn && last_sweep {
+                                c.update_steady_load(ctx.steady_load_time, ctx.h);
+                            }
+                        },
+                        |cs, bodies| {
+                            let velocities =
+                                in_lanes.then(|| solve_group(cs, bodies, ctx, false)).flatten()?;
+                            if learn && last_sweep {
+                                cs.iter_mut().for_each(|c| c.update_steady_load(ctx.steady_load_time, ctx.h));
+                            }
+                            Some(velocities)
+                        },
+                    );
                 }
                 if learn && ctx.relax_iterations == 0 {
                     data.contacts(thread, |c| c.update_steady_load(ctx.steady_load_time, ctx.h));

@@ -18,7 +18,7 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use crate::dynamics::colouring::ContactColouring;
-use crate::dynamics::contact_solver::ContactConstraint;
+use crate::dynamics::contact_solver::{ContactConstraint, GroupVelocities, GROUP};
 use crate::dynamics::solver_body::SolverBody;
 use crate::step_threads::StepThreads;
 
@@ -227,6 +227,54 @@ impl<'a, S: Send> SolveData<'a, S> {
         }
     }
 
+    /// As `contacts_with_bodies`, but four constraints of one colour at a time go to `group`
+    /// (with their bodies, `[a₀, b₀, a₁, b₁, …]`), which returns the bodies' new velocities, or
+    /// `None` to have `f` take them one by one. The rest of a colour, and the overflow, go to `f`.
+    /// `group` must give each constraint what `f` gives it alone.
+    pub fn contacts_in_groups(
+        &self,
+        thread: SolverThread,
+        f: impl Fn(&mut ContactConstraint, &mut SolverBody, &mut SolverBody),
+        group: impl Fn(&mut [ContactConstraint], &[&SolverBody; 2 * GROUP]) -> Option<GroupVelocities>,
+    ) {
+        for (run, split) in self.colouring.stages() {
+            let mine = match (split, thread.is_first()) {
+                (true, _) => thread.share(run.clone()),
+                (false, true) => run.clone(),
+                (false, false) => 0..0,
+            };
+            let mut start = mine.start;
+            while start < mine.end {
+                let colour_end = self.colouring.colour_end(start);
+                let end = colour_end.map_or(mine.end, |end| end.min(mine.end));
+                // SAFETY: as in `contacts_with_bodies`: this thread's share of one colour (or a
+                // serial run on the first thread alone), until the barrier.
+                let part = unsafe { self.contacts.slice(start..end) };
+                let alone = if colour_end.is_some() {
+                    let mut groups = part.chunks_exact_mut(GROUP);
+                    for contacts in &mut groups {
+                        // SAFETY: the constraints are of one colour, so their dynamic bodies are
+                        // distinct and this thread's until the barrier.
+                        if !unsafe { self.bodies.with_group(contacts, &group) } {
+                            for c in contacts {
+                                unsafe { self.bodies.with_pair(c.body_a, c.body_b, |a, b| f(c, a, b)) };
+                            }
+                        }
+                    }
+                    groups.into_remainder()
+                } else {
+                    part
+                };
+                for c in alone {
+                    // SAFETY: as in `contacts_with_bodies`.
+                    unsafe { self.bodies.with_pair(c.body_a, c.body_b, |a, b| f(c, a, b)) };
+                }
+                start = end;
+            }
+            thread.sync();
+        }
+    }
+
     /// `f` on the first thread with the serial state and all bodies; the others wait.
     pub fn serial(&self, thread: SolverThread, f: impl FnOnce(&mut S, &mut [SolverBody])) {
         if thread.is_first() {
@@ -338,6 +386,39 @@ impl Shared<'_, SolverBody> {
             };
             f(a, b)
         }
+    }
+}
+
+impl Shared<'_, SolverBody> {
+    /// Calls `group` with the bodies of `contacts` (`[a₀, b₀, a₁, b₁, …]`) and, when it returns
+    /// velocities, writes them into the dynamic ones (the others, which do not move, are only
+    /// read). Returns whether `group` took the constraints.
+    ///
+    /// # Safety
+    /// The constraints' dynamic bodies must be distinct, and no other thread may use them until
+    /// the next barrier.
+    unsafe fn with_group(
+        &self,
+        contacts: &mut [ContactConstraint],
+        group: impl Fn(&mut [ContactConstraint], &[&SolverBody; 2 * GROUP]) -> Option<GroupVelocities>,
+    ) -> bool {
+        let slots: [usize; 2 * GROUP] =
+            std::array::from_fn(|j| if j % 2 == 0 { contacts[j / 2].body_a } else { contacts[j / 2].body_b });
+        assert!(slots.iter().all(|&slot| slot < self.len), "body slot out of range");
+        // SAFETY: in bounds (checked); only read here, and written below once these references
+        // are no longer used.
+        let bodies: [&SolverBody; 2 * GROUP] = std::array::from_fn(|j| unsafe { &*self.ptr.add(slots[j]) });
+        let dynamic: [bool; 2 * GROUP] = std::array::from_fn(|j| bodies[j].is_dynamic());
+        let Some(velocities) = group(contacts, &bodies) else { return false };
+        for (j, &slot) in slots.iter().enumerate() {
+            if dynamic[j] {
+                // SAFETY: a dynamic body is this thread's alone (the caller's contract), and
+                // appears once among the slots.
+                let body = unsafe { &mut *self.ptr.add(slot) };
+                (body.v, body.w) = velocities[j];
+            }
+        }
+        true
     }
 }
 

@@ -1,0 +1,672 @@
+//! The rows of *still* manifolds (both bodies still, no round side: `linear_pair`), written once
+//! over a lane type (`lanes.rs`) and run on one manifold (`f64`) or on four of one colour side by
+//! side (`f64x4`).
+//!
+//! A resting pile is mostly still manifolds, and their rows are the solver's main work. One
+//! manifold's pass is a long chain of dependent operations (the rows' velocities, the block of
+//! normal rows, the impulses, then friction on the velocities those left), which a processor
+//! cannot overlap with the next manifold's. The four manifolds of a group share no moving body
+//! (they are of one colour), so their chains run in the four lanes of one register.
+//!
+//! Each lane gets the bits its manifold gets alone: the arithmetic is the same for `f64` and for
+//! `f64x4` (`lanes.rs`), branches are selections, and what lanes do not do well — the pivoting of
+//! a block whose first try (every row free) fails — each such lane does on its own with the
+//! scalar `NormalBlock::solve`, which makes the same first try. So which manifolds share a group
+//! (and so the thread count) never changes a result, and a manifold that stops being still goes
+//! on with its own rows (contact_solver.rs) from the same state.
+//!
+//! The order of operations is the scalar rows' (`ContactConstraint::solve_normals`,
+//! `PatchFriction::solve`), step by step: the one-manifold path and the old scalar code give the
+//! same state hashes.
+
+use super::{ContactConstraint, SOFT_BAND};
+use crate::dynamics::contact_block::{
+    row_set, try_rows, violations, NormalBlock, RowSet, ALL_ROWS, MAX_POINTS,
+};
+use crate::dynamics::solver::StepContext;
+use crate::dynamics::solver_body::SolverBody;
+use crate::lanes::{Lane, M3, V3};
+use crate::math::DVec3;
+use wide::f64x4;
+
+/// Manifolds side by side in a group.
+pub(crate) const GROUP: usize = 4;
+
+/// Whether groups pay on the processor the crate is built for. `f64x4` is one AVX register;
+/// without AVX (`x86-64` baseline SSE2) `wide` runs it as two halves, and the gathers and
+/// scatters then cost more than the overlap gains (matched pyramid: 0.91x the one-by-one rows
+/// with SSE2, 1.14x with AVX2; docs/solver.md). The results are the same bits either way.
+pub(crate) const GROUPS_PAY: bool = cfg!(target_feature = "avx");
+
+/// What a manifold's rows read of a body, and the velocities they change.
+#[derive(Clone, Copy)]
+struct BodyLanes<L: Lane> {
+    v: V3<L>,
+    w: V3<L>,
+    dp: V3<L>,
+    turn: V3<L>,
+    inv_mass: L,
+    inv_inertia: M3<L>,
+}
+
+impl<L: Lane> BodyLanes<L> {
+    #[inline(always)]
+    fn gather<'a>(body: impl Fn(usize) -> &'a SolverBody) -> Self {
+        BodyLanes {
+            v: V3::from_fn(|k| body(k).v),
+            w: V3::from_fn(|k| body(k).w),
+            dp: V3::from_fn(|k| body(k).dp),
+            turn: V3::from_fn(|k| body(k).turn),
+            inv_mass: L::from_fn(|k| body(k).inv_mass),
+            inv_inertia: M3::from_fn(|k| body(k).inv_inertia),
+        }
+    }
+}
+
+/// A still manifold's rows and state, a manifold per lane. Rows past a manifold's point count
+/// hold zeros and are masked out (`live`).
+struct StillLanes<L: Lane> {
+    live: [L::Mask; MAX_POINTS],
+    /// The point count, at least 1 (the steady load's divisor).
+    count: L,
+    n: V3<L>,
+    arm_a: [V3<L>; MAX_POINTS],
+    arm_b: [V3<L>; MAX_POINTS],
+    base_separation: [L; MAX_POINTS],
+    normal_impulse: [L; MAX_POINTS],
+    steady_normal: [L; MAX_POINTS],
+    relative_velocity: [L; MAX_POINTS],
+    max_normal: [L; MAX_POINTS],
+    /// The step-start `K`, full.
+    coupling: [[L; MAX_POINTS]; MAX_POINTS],
+    bias_rate: L,
+    mass_scale: L,
+    impulse_scale: L,
+    lever_a: V3<L>,
+    lever_b: V3<L>,
+    twist_arms: [L; MAX_POINTS],
+    tangent_mass: M3<L>,
+    sliding_mass: L,
+    tangent_impulse: V3<L>,
+    twist_impulse: L,
+    friction: L,
+    /// A torsional or rolling impulse is accumulated (only on the one-manifold path: groups take
+    /// no manifold with those frictions).
+    other_impulse: L::Mask,
+}
+
+/// The rows of the manifolds `c(k)`, one per lane.
+#[inline(always)]
+fn gather_still<'a, L: Lane>(c: impl Fn(usize) -> &'a ContactConstraint) -> StillLanes<L> {
+    // The places past a manifold's point count hold stale numbers (prepare writes only its own
+    // points): read without a branch, then masked to zero.
+    let live: [L::Mask; MAX_POINTS] = std::array::from_fn(|i| L::mask_from_fn(|k| i < c(k).point_count));
+    let zero = L::splat(0.0);
+    let point = |i: usize, x: L| L::select(live[i], x, zero);
+    let point_vec = |i: usize, v: V3<L>| V3::select(live[i], v, V3::zero());
+    let packed: [L; super::COUPLING_ENTRIES] =
+        std::array::from_fn(|e| L::from_fn(|k| c(k).coupling_start[e]));
+    let mut coupling = [[L::splat(0.0); MAX_POINTS]; MAX_POINTS];
+    let mut next = 0;
+    for i in 0..MAX_POINTS {
+        for j in i..MAX_POINTS {
+            coupling[i][j] = packed[next];
+            coupling[j][i] = packed[next];
+            next += 1;
+        }
+    }
+    let n = V3::from_fn(|k| c(k).normal);
+    StillLanes {
+        live,
+        count: L::from_fn(|k| c(k).point_count.max(1) as f64),
+        n,
+        // The normal rows' angular Jacobians at the step start, `r⁰ × n` (computed here rather
+        // than stored: a large pile's rows are bound by memory, not by these products).
+        arm_a: std::array::from_fn(|i| point_vec(i, V3::from_fn(|k| c(k).points[i].r_a0).cross(n))),
+        arm_b: std::array::from_fn(|i| point_vec(i, V3::from_fn(|k| c(k).points[i].r_b0).cross(n))),
+        base_separation: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].base_separation))),
+        normal_impulse: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].normal_impulse))),
+        steady_normal: std::array::from_fn(|i| {
+            point(i, L::from_fn(|k| c(k).points[i].steady_normal_impulse))
+        }),
+        relative_velocity: std::array::from_fn(|i| {
+            point(i, L::from_fn(|k| c(k).points[i].relative_velocity))
+        }),
+        max_normal: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].max_normal_impulse))),
+        coupling,
+        bias_rate: L::from_fn(|k| c(k).softness.bias_rate),
+        mass_scale: L::from_fn(|k| c(k).softness.mass_scale),
+        impulse_scale: L::from_fn(|k| c(k).softness.impulse_scale),
+        lever_a: V3::from_fn(|k| c(k).friction.levers_start.0),
+        lever_b: V3::from_fn(|k| c(k).friction.levers_start.1),
+        twist_arms: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).friction.twist_arms[i]))),
+        tangent_mass: M3::from_fn(|k| c(k).friction.tangent_masses.0),
+        sliding_mass: L::from_fn(|k| c(k).friction.tangent_masses.1),
+        tangent_impulse: V3::from_fn(|k| c(k).friction.tangent_impulse),
+        twist_impulse: L::from_fn(|k| c(k).friction.twist_impulse),
+        friction: L::from_fn(|k| c(k).material.friction),
+        other_impulse: L::mask_from_fn(|k| {
+            c(k).torsional_impulse != 0.0 || c(k).rolling_impulse != DVec3::ZERO
+        }),
+    }
+}
+
+/// The block of normal rows of one pass, per lane (`NormalBlock`'s inputs).
+struct BlockLanes<L: Lane> {
+    matrix: [[L; MAX_POINTS]; MAX_POINTS],
+    rhs: [L; MAX_POINTS],
+    accumulated: [L; MAX_POINTS],
+    /// The rows whose compliance is not zero (the key of the kept factors, `FreeFactor`).
+    soft: [L::Mask; MAX_POINTS],
+}
+
+/// `Σ` over the live rows, from `−0.0` as `Iterator::sum` (adding `−0.0` changes nothing).
+#[inline(always)]
+fn sum_live<L: Lane>(live: &[L::Mask; MAX_POINTS], terms: impl Fn(usize) -> L) -> L {
+    let mut sum = L::splat(-0.0);
+    for (i, &is_live) in live.iter().enumerate() {
+        sum = sum + L::select(is_live, terms(i), L::splat(-0.0));
+    }
+    sum
+}
+
+/// `apply_impulse_and_moments` (contact_solver.rs) over lanes.
+#[inline(always)]
+fn apply_impulse_and_moments<L: Lane>(
+    a: &mut BodyLanes<L>,
+    b: &mut BodyLanes<L>,
+    p: V3<L>,
+    torque_a: V3<L>,
+    torque_b: V3<L>,
+) {
+    a.v = a.v - p.scale(a.inv_mass);
+    a.w = a.w - a.inv_inertia.mul_vec3(torque_a);
+    b.v = b.v + p.scale(b.inv_mass);
+    b.w = b.w + b.inv_inertia.mul_vec3(torque_b);
+}
+
+/// `apply_point_impulse` (joint parts) over lanes.
+#[inline(always)]
+fn apply_point_impulse<L: Lane>(
+    a: &mut BodyLanes<L>,
+    b: &mut BodyLanes<L>,
+    r_a: V3<L>,
+    r_b: V3<L>,
+    p: V3<L>,
+) {
+    a.v = a.v - p.scale(a.inv_mass);
+    a.w = a.w - a.inv_inertia.mul_vec3(r_a.cross(p));
+    b.v = b.v + p.scale(b.inv_mass);
+    b.w = b.w + b.inv_inertia.mul_vec3(r_b.cross(p));
+}
+
+/// Normal impulses `λᵢ n` at the step-start levers (`apply_still_normal_impulses`).
+#[inline(always)]
+fn apply_normal_impulses<L: Lane>(
+    m: &StillLanes<L>,
+    a: &mut BodyLanes<L>,
+    b: &mut BodyLanes<L>,
+    impulses: &[L; MAX_POINTS],
+) {
+    // Rows past the point count add `+0` to sums that start at `+0`, which are never `−0`: no
+    // change (their impulses and arms are zero).
+    let (mut total, mut torque_a, mut torque_b) = (L::splat(0.0), V3::zero(), V3::zero());
+    for i in 0..MAX_POINTS {
+        let l = impulses[i];
+        total = total + l;
+        torque_a = torque_a + m.arm_a[i].scale(l);
+        torque_b = torque_b + m.arm_b[i].scale(l);
+    }
+    apply_impulse_and_moments(a, b, m.n.scale(total), torque_a, torque_b);
+}
+
+/// Stage "warm start" of still manifolds; returns the lanes that apply anything (with any
+/// impulse accumulated).
+#[inline(always)]
+fn warm_start_pass<L: Lane>(m: &StillLanes<L>, a: &mut BodyLanes<L>, b: &mut BodyLanes<L>) -> L::Mask {
+    let active = has_impulse(m);
+    if !L::any(active) {
+        return active;
+    }
+    let (a_before, b_before) = (*a, *b);
+    apply_normal_impulses(m, a, b, &m.normal_impulse);
+    apply_point_impulse(a, b, m.lever_a, m.lever_b, m.tangent_impulse);
+    let twist = m.n.scale(m.twist_impulse);
+    a.w = a.w - a.inv_inertia.mul_vec3(twist);
+    b.w = b.w + b.inv_inertia.mul_vec3(twist);
+    keep_inactive(active, a, b, &a_before, &b_before);
+    active
+}
+
+/// Whether any impulse is accumulated (`ContactConstraint::has_impulse`).
+#[inline(always)]
+fn has_impulse<L: Lane>(m: &StillLanes<L>) -> L::Mask {
+    let zero = L::splat(0.0);
+    let mut any = m.tangent_impulse.ne_zero() | m.twist_impulse.ne(zero) | m.other_impulse;
+    for i in 0..MAX_POINTS {
+        any = any | (m.live[i] & m.normal_impulse[i].ne(zero));
+    }
+    any
+}
+
+/// The velocities of the lanes not in `active` as they were.
+#[inline(always)]
+fn keep_inactive<L: Lane>(
+    active: L::Mask,
+    a: &mut BodyLanes<L>,
+    b: &mut BodyLanes<L>,
+    a_before: &BodyLanes<L>,
+    b_before: &BodyLanes<L>,
+) {
+    a.v = V3::select(active, a.v, a_before.v);
+    a.w = V3::select(active, a.w, a_before.w);
+    b.v = V3::select(active, b.v, b_before.v);
+    b.w = V3::select(active, b.w, b_before.w);
+}
+
+/// Each normal row's separation and normal velocity now, linear in the step-start levers `r⁰`:
+/// a point moved by `Δp + θ × r⁰` and moves at `v + ω × r⁰` (`θ` the body's turn since the step
+/// began), so `n·` of either is `n·Δp + θ·(r⁰ × n)`. What that leaves out is second order,
+/// `|r| θ²/2` ≤ 0.5 µm on a lever of a metre, and the levers' own change, which the step-start `K`
+/// leaves out as well. The step-start levers of a point lie on one normal line, so the pair's
+/// angular momentum is kept exactly, as with the shared levers of the exact rows. A resting
+/// pile's rows then cost dot products instead of turning every point with both bodies. (Not on a
+/// round side: there the lever is the radius from a centre of curvature that turns with the body,
+/// and held at its step-start offset it lags the turning and feeds a rolling body's energy,
+/// docs/solver.md, "Still pairs".)
+#[inline(always)]
+fn rows_now<L: Lane>(
+    m: &StillLanes<L>,
+    a: &BodyLanes<L>,
+    b: &BodyLanes<L>,
+) -> ([L; MAX_POINTS], [L; MAX_POINTS]) {
+    let n = m.n;
+    let moved = n.dot(b.dp - a.dp);
+    let approach = n.dot(b.v - a.v);
+    let separations = std::array::from_fn(|i| {
+        m.base_separation[i] + moved + b.turn.dot(m.arm_b[i]) - a.turn.dot(m.arm_a[i])
+    });
+    let normal_velocities = std::array::from_fn(|i| approach + b.w.dot(m.arm_b[i]) - a.w.dot(m.arm_a[i]));
+    (separations, normal_velocities)
+}
+
+/// Stage "solve" (`use_bias`) or "relax" of still manifolds: the normal rows as one block (solved
+/// by `block`, given the lanes that take part), then friction. Returns the lanes that take part:
+/// the others are idle (`ContactConstraint::is_idle`), and nothing of theirs changes.
+#[inline(always)]
+fn solve_pass<L: Lane>(
+    m: &mut StillLanes<L>,
+    a: &mut BodyLanes<L>,
+    b: &mut BodyLanes<L>,
+    ctx: &StepContext,
+    use_bias: bool,
+    block: impl FnOnce(&BlockLanes<L>, L::Mask) -> [L; MAX_POINTS],
+) -> L::Mask {
+    let zero = L::splat(0.0);
+    let steady = sum_live(&m.live, |i| m.steady_normal[i]) / m.count;
+    let (separations, normal_velocities) = rows_now(m, a, b);
+    let (soft_band, inv_h) = (L::splat(SOFT_BAND), L::splat(ctx.inv_h));
+    let mut apart = L::mask_splat(true);
+    for i in 0..MAX_POINTS {
+        let (s, vn) = (separations[i], normal_velocities[i]);
+        apart = apart & (!m.live[i] | (s.gt(soft_band) & (vn + s * inv_h).ge(zero)));
+    }
+    let active = !(apart & !has_impulse(m));
+    if !L::any(active) {
+        return active;
+    }
+    let (a_before, b_before) = (*a, *b);
+
+    let mut inputs = BlockLanes {
+        matrix: m.coupling,
+        rhs: [zero; MAX_POINTS],
+        accumulated: m.normal_impulse,
+        soft: [L::mask_splat(false); MAX_POINTS],
+    };
+    let one = L::splat(1.0);
+    for i in 0..MAX_POINTS {
+        let s = separations[i];
+        let speculative = s.gt(soft_band);
+        let (bias, mass_scale, impulse_scale) = if use_bias {
+            let soft_bias = Lane::max(m.bias_rate * s, L::splat(-ctx.max_contact_push_velocity));
+            (
+                L::select(speculative, s * inv_h, soft_bias),
+                L::select(speculative, one, m.mass_scale),
+                L::select(speculative, zero, m.impulse_scale),
+            )
+        } else {
+            (L::select(speculative, s * inv_h, zero), one, zero)
+        };
+        let vn = normal_velocities[i];
+        let engaged = m.live[i] & (vn + bias).lt(zero);
+        m.relative_velocity[i] =
+            L::select(engaged, Lane::min(m.relative_velocity[i], vn), m.relative_velocity[i]);
+        let k_ii = m.coupling[i][i];
+        let gamma = L::select(mass_scale.gt(zero), k_ii * impulse_scale / mass_scale, zero);
+        inputs.soft[i] = m.live[i] & gamma.ne(zero);
+        inputs.rhs[i] = -(vn + bias) - gamma * (m.normal_impulse[i] - steady);
+        inputs.matrix[i][i] = inputs.matrix[i][i] + gamma;
+    }
+    let deltas = block(&inputs, active);
+    for i in 0..MAX_POINTS {
+        let live = m.live[i];
+        let applied = deltas[i];
+        let impulse = Lane::max(m.normal_impulse[i] + applied, zero);
+        m.normal_impulse[i] = L::select(live, impulse, m.normal_impulse[i]);
+        m.max_normal[i] = L::select(live, Lane::max(m.max_normal[i], applied), m.max_normal[i]);
+    }
+    apply_normal_impulses(m, a, b, &deltas);
+    friction_pass(m, a, b);
+    keep_inactive(active, a, b, &a_before, &b_before);
+    active
+}
+
+/// Friction at the manifold's centre, bounded by its normal impulses (`PatchFriction::solve`,
+/// with the step-start levers of a still pair).
+#[inline(always)]
+fn friction_pass<L: Lane>(m: &mut StillLanes<L>, a: &mut BodyLanes<L>, b: &mut BodyLanes<L>) {
+    let zero = L::splat(0.0);
+    let n = m.n;
+    let total = sum_live(&m.live, |i| m.normal_impulse[i]);
+    let twist_limit = m.friction * sum_live(&m.live, |i| m.normal_impulse[i] * m.twist_arms[i]);
+    let loaded = twist_limit.gt(zero);
+    let old = m.twist_impulse;
+    let unloaded = !loaded & old.ne(zero);
+    let (mut w_a, mut w_b, mut twist) = (a.w, b.w, old);
+    if L::any(loaded) {
+        let k_twist = n.dot((a.inv_inertia + b.inv_inertia).mul_vec3(n));
+        let twist_mass = L::select(k_twist.gt(zero), L::splat(1.0) / k_twist, zero);
+        let w_rel = n.dot(b.w - a.w);
+        let new = (old - twist_mass * w_rel).clamp(-twist_limit, twist_limit);
+        let delta = n.scale(new - old);
+        w_a = V3::select(loaded, a.w - a.inv_inertia.mul_vec3(delta), w_a);
+        w_b = V3::select(loaded, b.w + b.inv_inertia.mul_vec3(delta), w_b);
+        twist = L::select(loaded, new, twist);
+    }
+    if L::any(unloaded) {
+        // No load, no twist friction: take back what the warm start applied.
+        let back = n.scale(old);
+        w_a = V3::select(unloaded, a.w + a.inv_inertia.mul_vec3(back), w_a);
+        w_b = V3::select(unloaded, b.w - b.inv_inertia.mul_vec3(back), w_b);
+        twist = L::select(unloaded, zero, twist);
+    }
+    a.w = w_a;
+    b.w = w_b;
+    m.twist_impulse = twist;
+
+    let (r_a, r_b) = (m.lever_a, m.lever_b);
+    let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
+    let vt = dv - n.scale(n.dot(dv));
+    let old = m.tangent_impulse;
+    let sticking = old - m.tangent_mass.mul_vec3(vt);
+    let max = m.friction * total;
+    let sliding = sticking.length().gt(max);
+    let mut new = sticking;
+    if L::any(sliding) {
+        // Sliding: the isotropic mass, whose fixed point on the rim opposes the slip.
+        let slide = old - vt.scale(m.sliding_mass);
+        let len = slide.length();
+        let slide = V3::select(len.gt(max), slide.scale(max / len), slide);
+        new = V3::select(sliding, slide, sticking);
+    }
+    m.tangent_impulse = new;
+    apply_point_impulse(a, b, r_a, r_b, new - old);
+}
+
+/// The scalar block solve of one manifold (`NormalBlock::solve`, from its kept factors and its
+/// last free rows), or its rows one by one when the block cannot be factored; sets the
+/// manifold's free rows. `soft` is the key of the kept factors.
+fn block_alone(
+    c: &mut ContactConstraint,
+    matrix: &[[f64; MAX_POINTS]; MAX_POINTS],
+    rhs: &[f64; MAX_POINTS],
+    accumulated: &[f64; MAX_POINTS],
+    soft: RowSet,
+    use_bias: bool,
+) -> [f64; MAX_POINTS] {
+    let count = c.point_count;
+    let mut block = NormalBlock { count, ..Default::default() };
+    for i in 0..count {
+        block.rhs[i] = rhs[i];
+        block.matrix[i] = matrix[i];
+    }
+    let kept = Some((&mut c.free_factors[usize::from(use_bias)], soft));
+    let (deltas, free_rows) = block.solve_or_one_by_one(accumulated, c.free_rows, kept);
+    c.free_rows = free_rows;
+    deltas
+}
+
+/// Writes lane `k`'s state back into its manifold.
+#[inline(always)]
+fn scatter_still<L: Lane>(m: &StillLanes<L>, k: usize, c: &mut ContactConstraint) {
+    for (i, pc) in c.points[..c.point_count].iter_mut().enumerate() {
+        pc.normal_impulse = m.normal_impulse[i].lane(k);
+        pc.relative_velocity = m.relative_velocity[i].lane(k);
+        pc.max_normal_impulse = m.max_normal[i].lane(k);
+    }
+    c.friction.tangent_impulse = m.tangent_impulse.lane(k);
+    c.friction.twist_impulse = m.twist_impulse.lane(k);
+}
+
+impl ContactConstraint {
+    /// Whether a group may take this manifold: no round side, and no torsional or rolling
+    /// friction (whose rows the one-manifold path adds after its friction).
+    #[inline]
+    pub(crate) fn fits_lanes(&self) -> bool {
+        self.radii == (0.0, 0.0)
+            && self.material.torsional_friction == 0.0
+            && self.material.rolling_friction == 0.0
+    }
+
+    /// The separations and normal velocities of a still pair's rows now (`rows_now`).
+    #[cfg(test)]
+    pub(super) fn rows_still(
+        &self,
+        a: &SolverBody,
+        b: &SolverBody,
+    ) -> ([f64; MAX_POINTS], [f64; MAX_POINTS]) {
+        let m = gather_still::<f64>(|_| self);
+        rows_now(&m, &BodyLanes::gather(|_| a), &BodyLanes::gather(|_| b))
+    }
+
+    /// Stage "warm start" of a still manifold alone (see the module docs).
+    pub(super) fn warm_start_still(&self, a: &mut SolverBody, b: &mut SolverBody) {
+        if !self.has_impulse() {
+            return;
+        }
+        let m = gather_still::<f64>(|_| self);
+        let (mut la, mut lb) = (BodyLanes::<f64>::gather(|_| &*a), BodyLanes::gather(|_| &*b));
+        if warm_start_pass(&m, &mut la, &mut lb) {
+            (a.v, a.w, b.v, b.w) = (la.v.lane(0), la.w.lane(0), lb.v.lane(0), lb.w.lane(0));
+        }
+    }
+
+    /// Stage "solve"/"relax" of the normal rows and friction of a still manifold alone; the total
+    /// normal impulse, or `None` when the manifold is idle.
+    pub(super) fn solve_still(
+        &mut self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        ctx: &StepContext,
+        use_bias: bool,
+    ) -> Option<f64> {
+        let mut m = gather_still::<f64>(|_| self);
+        let (mut la, mut lb) = (BodyLanes::<f64>::gather(|_| &*a), BodyLanes::gather(|_| &*b));
+        let active = solve_pass(&mut m, &mut la, &mut lb, ctx, use_bias, |inputs, _| {
+            block_alone(
+                self,
+                &inputs.matrix,
+                &inputs.rhs,
+                &inputs.accumulated,
+                row_set::<f64>(&inputs.soft, 0),
+                use_bias,
+            )
+        });
+        if !active {
+            return None;
+        }
+        scatter_still(&m, 0, self);
+        (a.v, a.w, b.v, b.w) = (la.v.lane(0), la.w.lane(0), lb.v.lane(0), lb.w.lane(0));
+        Some(self.points[..self.point_count].iter().fold(0.0, |t, pc| t + pc.normal_impulse))
+    }
+}
+
+/// The new velocities `(v, ω)` of a group's bodies, `[a₀, b₀, a₁, b₁, …]`.
+pub(crate) type GroupVelocities = [(DVec3, DVec3); 2 * GROUP];
+
+/// Whether the four manifolds can go as a group now: each fits the lanes and both its bodies are
+/// still.
+#[inline]
+fn group_is_still(contacts: &[ContactConstraint], bodies: &[&SolverBody; 2 * GROUP]) -> bool {
+    (0..GROUP).all(|k| contacts[k].fits_lanes() && bodies[2 * k].still && bodies[2 * k + 1].still)
+}
+
+/// The velocities the lanes leave.
+#[inline(always)]
+fn velocities(a: &BodyLanes<f64x4>, b: &BodyLanes<f64x4>) -> GroupVelocities {
+    std::array::from_fn(|j| {
+        let body = if j % 2 == 0 { a } else { b };
+        (body.v.lane(j / 2), body.w.lane(j / 2))
+    })
+}
+
+/// Stage "warm start" of four still manifolds of one colour at once (`bodies`: each one's a and
+/// b), or `None` when they are not all still (then each goes alone).
+pub(crate) fn warm_start_group(
+    contacts: &[ContactConstraint],
+    bodies: &[&SolverBody; 2 * GROUP],
+) -> Option<GroupVelocities> {
+    if !group_is_still(contacts, bodies) {
+        return None;
+    }
+    let m = gather_still::<f64x4>(|k| &contacts[k]);
+    let mut a = BodyLanes::<f64x4>::gather(|k| bodies[2 * k]);
+    let mut b = BodyLanes::<f64x4>::gather(|k| bodies[2 * k + 1]);
+    warm_start_pass(&m, &mut a, &mut b);
+    Some(velocities(&a, &b))
+}
+
+/// Stage "solve"/"relax" of four still manifolds of one colour at once, or `None` when they are
+/// not all still. A lane whose block does not take every row free in the first try (or has one
+/// point) solves its block alone, as the one-manifold path does.
+pub(crate) fn solve_group(
+    contacts: &mut [ContactConstraint],
+    bodies: &[&SolverBody; 2 * GROUP],
+    ctx: &StepContext,
+    use_bias: bool,
+) -> Option<GroupVelocities> {
+    if !group_is_still(contacts, bodies) {
+        return None;
+    }
+    let mut m = gather_still::<f64x4>(|k| &contacts[k]);
+    let mut a = BodyLanes::<f64x4>::gather(|k| bodies[2 * k]);
+    let mut b = BodyLanes::<f64x4>::gather(|k| bodies[2 * k + 1]);
+    let live = m.live;
+    let counts: [usize; GROUP] = std::array::from_fn(|k| contacts[k].point_count);
+    let active = solve_pass(&mut m, &mut a, &mut b, ctx, use_bias, |inputs, active| {
+        block_group(contacts, &counts, &live, inputs, active, use_bias)
+    });
+    for (k, contact) in contacts.iter_mut().enumerate().take(GROUP) {
+        if <f64x4 as Lane>::mask_lane(active, k) {
+            scatter_still(&m, k, contact);
+        }
+    }
+    Some(velocities(&a, &b))
+}
+
+/// The blocks of a group, in the lanes as far as `NormalBlock::solve` goes in two tries: every row
+/// free, then the rows the manifold last left free (or, with no such guess, the first row that
+/// broke a condition turned over). Each active lane that needs more pivots solves its block
+/// alone, from the start. A single row is its scalar soft update, clamped.
+#[inline(always)]
+fn block_group(
+    contacts: &mut [ContactConstraint],
+    counts: &[usize; GROUP],
+    live: &[f64x4; MAX_POINTS],
+    inputs: &BlockLanes<f64x4>,
+    active: f64x4,
+    use_bias: bool,
+) -> [f64x4; MAX_POINTS] {
+    type Mask = f64x4;
+    let zero = f64x4::splat(0.0);
+    let (matrix, rhs, accumulated) = (&inputs.matrix, &inputs.rhs, &inputs.accumulated);
+    let all = [<f64x4 as Lane>::mask_splat(true); MAX_POINTS];
+    let single = <f64x4 as Lane>::mask_from_fn(|k| counts[k] == 1);
+    let several = <f64x4 as Lane>::mask_from_fn(|k| counts[k] >= 2);
+    let k = matrix[0][0];
+    let single_delta = k.simd_gt(zero).select(Lane::max(rhs[0] / k, -accumulated[0]), zero);
+
+    let (first, factored) = try_rows(matrix, rhs, accumulated, live, &all);
+    let broken = violations(matrix, rhs, accumulated, live, &all, &first);
+    let any_broken = broken.iter().fold(<f64x4 as Lane>::mask_splat(false), |any, &b| any | b);
+    let first_ok = several & factored & !any_broken;
+    let mut deltas: [f64x4; MAX_POINTS] = std::array::from_fn(|i| {
+        if i == 0 {
+            single.select(single_delta, first_ok.select(first[0], zero))
+        } else {
+            first_ok.select(first[i], zero)
+        }
+    });
+    let mut solved = first_ok | single;
+    let mut second_rows: [Mask; MAX_POINTS] = all;
+    let second = active & several & factored & any_broken;
+    let mut second_ok = <f64x4 as Lane>::mask_splat(false);
+    if second.any() {
+        let first_broken: [usize; GROUP] = std::array::from_fn(|k| {
+            (0..MAX_POINTS).find(|&i| <f64x4 as Lane>::mask_lane(broken[i], k)).unwrap_or(0)
+        });
+        let guess: [RowSet; GROUP] = std::array::from_fn(|k| contacts[k].free_rows);
+        second_rows = std::array::from_fn(|i| {
+            <f64x4 as Lane>::mask_from_fn(|k| {
+                if guess[k] & ALL_ROWS != ALL_ROWS {
+                    guess[k] & (1 << i) != 0
+                } else {
+                    i != first_broken[k]
+                }
+            })
+        });
+        let (delta, factored) = try_rows(matrix, rhs, accumulated, live, &second_rows);
+        let broken = violations(matrix, rhs, accumulated, live, &second_rows, &delta);
+        let any_broken = broken.iter().fold(<f64x4 as Lane>::mask_splat(false), |any, &b| any | b);
+        second_ok = second & factored & !any_broken;
+        for i in 0..MAX_POINTS {
+            deltas[i] = second_ok.select(delta[i], deltas[i]);
+        }
+        solved = solved | second_ok;
+    }
+
+    let alone = active & !solved;
+    if alone.any() {
+        let mut lanes = deltas.map(|d| d.to_array());
+        for (k, contact) in contacts.iter_mut().enumerate().take(GROUP) {
+            if !<f64x4 as Lane>::mask_lane(alone, k) {
+                continue;
+            }
+            let matrix: [[f64; MAX_POINTS]; MAX_POINTS] =
+                std::array::from_fn(|i| std::array::from_fn(|j| matrix[i][j].lane(k)));
+            let rhs = rhs.map(|r| r.lane(k));
+            let accumulated = accumulated.map(|r| r.lane(k));
+            let soft = row_set::<f64x4>(&inputs.soft, k);
+            let one = block_alone(contact, &matrix, &rhs, &accumulated, soft, use_bias);
+            for i in 0..MAX_POINTS {
+                lanes[i][k] = one[i];
+            }
+        }
+        deltas = lanes.map(f64x4::new);
+    }
+    for (k, contact) in contacts.iter_mut().enumerate().take(GROUP) {
+        if !<f64x4 as Lane>::mask_lane(active & solved, k) {
+            continue;
+        }
+        contact.free_rows = if <f64x4 as Lane>::mask_lane(second_ok, k) {
+            row_set::<f64x4>(&second_rows, k)
+        } else {
+            ALL_ROWS
+        };
+    }
+    deltas
+}
+
+#[cfg(test)]
+#[path = "contact_lanes_tests.rs"]
+mod tests;
