@@ -194,10 +194,7 @@ fn apply_point_impulse<L: Lane>(
     r_b: V3<L>,
     p: V3<L>,
 ) {
-    a.v = a.v - p.scale(a.inv_mass);
-    a.w = a.w - a.inv_inertia.mul_vec3(r_a.cross(p));
-    b.v = b.v + p.scale(b.inv_mass);
-    b.w = b.w + b.inv_inertia.mul_vec3(r_b.cross(p));
+    apply_impulse_and_moments(a, b, p, r_a.cross(p), r_b.cross(p));
 }
 
 /// Normal impulses `λᵢ n` at the step-start levers (`apply_still_normal_impulses`).
