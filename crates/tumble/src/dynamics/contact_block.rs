@@ -307,12 +307,13 @@ pub(crate) fn row_set<L: Lane>(rows: &[L::Mask; MAX_POINTS], k: usize) -> RowSet
 /// The factors `L D Lᵀ = m + εI` of a symmetric positive (semi-)definite 4×4 system, with a
 /// regularisation `ε` of `1e-9` of `scale` (the largest diagonal entry of the rows that matter) so
 /// that the singular systems of coplanar points give their least-norm solution. No square roots:
-/// `L` has a unit diagonal.
+/// `L` has a unit diagonal. Over a lane type, one block per lane (contact_lanes.rs factors four
+/// manifolds' blocks at once, with the bits each gets alone).
 #[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
-struct Ldlt {
+pub(crate) struct Ldlt<L = f64> {
     /// `L` below its unit diagonal, row by row (`lower_index`).
-    l: [f64; LOWER_ENTRIES],
-    inv_d: [f64; MAX_POINTS],
+    l: [L; LOWER_ENTRIES],
+    inv_d: [L; MAX_POINTS],
 }
 
 /// Entries of a `MAX_POINTS`² matrix strictly below the diagonal.
@@ -356,26 +357,13 @@ impl Ldlt {
     /// `None` when the matrix is not positive (a degenerate manifold).
     fn factor(m: &[[f64; MAX_POINTS]; MAX_POINTS], scale: f64) -> Option<Ldlt> {
         let (factors, positive) = factor_lanes(m, scale);
-        positive.then_some(Ldlt { l: factors.l, inv_d: factors.inv_d })
+        positive.then_some(factors)
     }
-
-    /// `x` with `L D Lᵀ x = b`.
-    fn solve(&self, b: &[f64; MAX_POINTS]) -> [f64; MAX_POINTS] {
-        LdltLanes { l: self.l, inv_d: self.inv_d }.solve(b)
-    }
-}
-
-/// `Ldlt` over a lane type: the factors of one block per lane (contact_lanes.rs factors four
-/// manifolds' blocks at once, with the bits each gets alone).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct LdltLanes<L> {
-    l: [L; LOWER_ENTRIES],
-    inv_d: [L; MAX_POINTS],
 }
 
 /// The factors of `m + εI` per lane (see `Ldlt`), and the lanes where `m` is positive (where it is
 /// not, that lane's factors are meaningless).
-pub(crate) fn factor_lanes<L: Lane>(m: &[[L; MAX_POINTS]; MAX_POINTS], scale: L) -> (LdltLanes<L>, L::Mask) {
+pub(crate) fn factor_lanes<L: Lane>(m: &[[L; MAX_POINTS]; MAX_POINTS], scale: L) -> (Ldlt<L>, L::Mask) {
     let zero = L::splat(0.0);
     // `scale > 0` and finite (`scale − scale` is NaN for an infinite or NaN scale).
     let mut positive = scale.gt(zero) & !(scale - scale).ne(zero);
@@ -405,10 +393,10 @@ pub(crate) fn factor_lanes<L: Lane>(m: &[[L; MAX_POINTS]; MAX_POINTS], scale: L)
             packed[lower_index(i, k)] = l[i][k];
         }
     }
-    (LdltLanes { l: packed, inv_d }, positive)
+    (Ldlt { l: packed, inv_d }, positive)
 }
 
-impl<L: Lane> LdltLanes<L> {
+impl<L: Lane> Ldlt<L> {
     /// `x` with `L D Lᵀ x = b`.
     pub fn solve(&self, b: &[L; MAX_POINTS]) -> [L; MAX_POINTS] {
         let l = &self.l;

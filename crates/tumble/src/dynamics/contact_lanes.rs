@@ -468,9 +468,6 @@ impl ContactConstraint {
 
     /// Stage "warm start" of a still manifold alone (see the module docs).
     pub(super) fn warm_start_still(&self, a: &mut SolverBody, b: &mut SolverBody) {
-        if !self.has_impulse() {
-            return;
-        }
         let m = gather_still::<f64>(|_| self);
         let (mut la, mut lb) = (BodyLanes::<f64>::gather(|_| &*a), BodyLanes::gather(|_| &*b));
         if warm_start_pass(&m, &mut la, &mut lb) {

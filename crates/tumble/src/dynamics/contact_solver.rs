@@ -408,14 +408,14 @@ impl ContactConstraint {
 
     /// Stage "warm start": apply the accumulated impulses again.
     pub fn warm_start(&self, a: &mut SolverBody, b: &mut SolverBody) {
+        if !self.has_impulse() {
+            return;
+        }
         let radii = self.radii;
         if linear_pair(radii, a, b) {
             // Still: the rows linear in the step-start levers (contact_lanes.rs).
             self.warm_start_still(a, b);
         } else {
-            if !self.has_impulse() {
-                return;
-            }
             let count = self.point_count;
             let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
             let mut impulses = [DVec3::ZERO; MAX_POINTS];

@@ -210,7 +210,7 @@ pub(crate) const PARALLEL_MIN_BODIES: usize = 1024;
 
 /// Contacts per thread up to which still manifolds are solved in groups of four (contact_lanes.rs).
 /// Beyond, the rows stream from memory, and groups ran slower than manifolds one by one: on the
-/// bench machine (2 MB of L2 per core) a pyramid of 1335 manifolds ran 1.2x faster in groups,
+/// bench machine (1 MB of L2 per core) a pyramid of 1335 manifolds ran 1.2x faster in groups,
 /// one of 3725 about as fast, one of 5370 0.9x and one of 14950 0.85x (docs/solver.md).
 pub(crate) const GROUPS_MAX_CONTACTS_PER_THREAD: usize = 4096;
 
@@ -382,15 +382,17 @@ impl World {
                 // the same numbers as one at a time.
                 data.contacts_in_groups(
                     thread,
+                    in_lanes,
                     |c, a, b| c.warm_start(a, b),
-                    |cs, bodies| in_lanes.then(|| warm_start_group(cs, bodies)).flatten(),
+                    |cs, bodies| warm_start_group(cs, bodies),
                 );
                 for _ in 0..ctx.solve_iterations {
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, true));
                     data.contacts_in_groups(
                         thread,
+                        in_lanes,
                         |c, a, b| c.solve(a, b, ctx, true),
-                        |cs, bodies| in_lanes.then(|| solve_group(cs, bodies, ctx, true)).flatten(),
+                        |cs, bodies| solve_group(cs, bodies, ctx, true),
                     );
                     if has_joints {
                         data.serial(thread, |(joints, trees), bodies| {
@@ -421,6 +423,7 @@ impl World {
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, false));
                     data.contacts_in_groups(
                         thread,
+                        in_lanes,
                         |c, a, b| {
                             c.solve(a, b, ctx, false);
                             if learn && last_sweep {
@@ -428,8 +431,7 @@ impl World {
                             }
                         },
                         |cs, bodies| {
-                            let velocities =
-                                in_lanes.then(|| solve_group(cs, bodies, ctx, false)).flatten()?;
+                            let velocities = solve_group(cs, bodies, ctx, false)?;
                             if learn && last_sweep {
                                 cs.iter_mut().for_each(|c| c.update_steady_load(ctx.steady_load_time, ctx.h));
                             }

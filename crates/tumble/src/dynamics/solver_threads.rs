@@ -227,16 +227,20 @@ impl<'a, S: Send> SolveData<'a, S> {
         }
     }
 
-    /// As `contacts_with_bodies`, but four constraints of one colour at a time go to `group`
-    /// (with their bodies, `[a₀, b₀, a₁, b₁, …]`), which returns the bodies' new velocities, or
-    /// `None` to have `f` take them one by one. The rest of a colour, and the overflow, go to `f`.
-    /// `group` must give each constraint what `f` gives it alone.
+    /// As `contacts_with_bodies`, but where `grouped`, four constraints of one colour at a time go
+    /// to `group` (with their bodies, `[a₀, b₀, a₁, b₁, …]`), which returns the bodies' new
+    /// velocities, or `None` to have `f` take them one by one. The rest of a colour, and the
+    /// overflow, go to `f`. `group` must give each constraint what `f` gives it alone.
     pub fn contacts_in_groups(
         &self,
         thread: SolverThread,
+        grouped: bool,
         f: impl Fn(&mut ContactConstraint, &mut SolverBody, &mut SolverBody),
         group: impl Fn(&mut [ContactConstraint], &[&SolverBody; 2 * GROUP]) -> Option<GroupVelocities>,
     ) {
+        if !grouped {
+            return self.contacts_with_bodies(thread, f);
+        }
         for (run, split) in self.colouring.stages() {
             let mine = match (split, thread.is_first()) {
                 (true, _) => thread.share(run.clone()),
