@@ -85,6 +85,10 @@ pub struct World {
     /// with it.
     #[serde(skip)]
     pub(crate) contacts_in_groups: Option<bool>,
+    /// The rows of the contacts four at a time for the still manifolds' groups, written each
+    /// step (kept to reuse the allocation).
+    #[serde(skip)]
+    pub(crate) still_blocks: Vec<crate::dynamics::contact_solver::StillBlock>,
     /// The contacts the solver takes this step (their places in the contact store, and bodies), in
     /// store order (kept to reuse the allocation).
     #[serde(skip)]
@@ -215,6 +219,7 @@ impl World {
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
             contacts_in_groups: None,
+            still_blocks: Vec::new(),
             solved_contacts: Vec::new(),
             proxies_in_place_for: None,
             body_partition: Default::default(),

@@ -21,7 +21,7 @@
 
 use super::{ContactConstraint, SOFT_BAND};
 use crate::dynamics::contact_block::{
-    row_set, try_rows, violations, NormalBlock, RowSet, ALL_ROWS, MAX_POINTS,
+    row_set, try_rows, violations, NormalBlock, RowSet, ALL_ROWS, COUPLING_ENTRIES, MAX_POINTS,
 };
 use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
@@ -63,22 +63,21 @@ impl<L: Lane> BodyLanes<L> {
     }
 }
 
-/// A still manifold's rows and state, a manifold per lane. Rows past a manifold's point count
-/// hold zeros and are masked out (`live`).
-struct StillLanes<L: Lane> {
+/// What a still manifold's rows read and a step does not change, a manifold per lane (four of
+/// them: `StillBlock`). Rows past a manifold's point count hold zeros and are masked out
+/// (`live`).
+#[derive(Clone, Copy)]
+struct StillRows<L: Lane> {
     live: [L::Mask; MAX_POINTS],
     /// The point count, at least 1 (the steady load's divisor).
     count: L,
     n: V3<L>,
+    /// The normal rows' angular Jacobians at the step start, `r⁰ × n`.
     arm_a: [V3<L>; MAX_POINTS],
     arm_b: [V3<L>; MAX_POINTS],
     base_separation: [L; MAX_POINTS],
-    normal_impulse: [L; MAX_POINTS],
-    steady_normal: [L; MAX_POINTS],
-    relative_velocity: [L; MAX_POINTS],
-    max_normal: [L; MAX_POINTS],
-    /// The step-start `K`, full.
-    coupling: [[L; MAX_POINTS]; MAX_POINTS],
+    /// The step-start `K`, packed (`pack_symmetric`).
+    coupling: [L; COUPLING_ENTRIES],
     bias_rate: L,
     mass_scale: L,
     impulse_scale: L,
@@ -87,25 +86,85 @@ struct StillLanes<L: Lane> {
     twist_arms: [L; MAX_POINTS],
     tangent_mass: M3<L>,
     sliding_mass: L,
+    friction: L,
+}
+
+/// What the passes change of a still manifold (and the steady loads, which change between
+/// substeps), a manifold per lane.
+struct StillState<L: Lane> {
+    normal_impulse: [L; MAX_POINTS],
+    steady_normal: [L; MAX_POINTS],
+    relative_velocity: [L; MAX_POINTS],
+    max_normal: [L; MAX_POINTS],
     tangent_impulse: V3<L>,
     twist_impulse: L,
-    friction: L,
     /// A torsional or rolling impulse is accumulated (only on the one-manifold path: groups take
     /// no manifold with those frictions).
     other_impulse: L::Mask,
 }
 
+/// `x` on live rows, zero past the point count.
+#[inline(always)]
+fn live_or_zero<L: Lane>(live: &[L::Mask; MAX_POINTS], i: usize, x: L) -> L {
+    L::select(live[i], x, L::splat(0.0))
+}
+
 /// The rows of the manifolds `c(k)`, one per lane.
 #[inline(always)]
-fn gather_still<'a, L: Lane>(c: impl Fn(usize) -> &'a ContactConstraint) -> StillLanes<L> {
+fn gather_rows<'a, L: Lane>(c: impl Fn(usize) -> &'a ContactConstraint) -> StillRows<L> {
     // The places past a manifold's point count hold stale numbers (prepare writes only its own
     // points): read without a branch, then masked to zero.
     let live: [L::Mask; MAX_POINTS] = std::array::from_fn(|i| L::mask_from_fn(|k| i < c(k).point_count));
-    let zero = L::splat(0.0);
-    let point = |i: usize, x: L| L::select(live[i], x, zero);
+    let point = |i: usize, x: L| live_or_zero(&live, i, x);
     let point_vec = |i: usize, v: V3<L>| V3::select(live[i], v, V3::zero());
-    let packed: [L; super::COUPLING_ENTRIES] =
-        std::array::from_fn(|e| L::from_fn(|k| c(k).coupling_start[e]));
+    let n = V3::from_fn(|k| c(k).normal);
+    StillRows {
+        live,
+        count: L::from_fn(|k| c(k).point_count.max(1) as f64),
+        n,
+        arm_a: std::array::from_fn(|i| point_vec(i, V3::from_fn(|k| c(k).points[i].r_a0).cross(n))),
+        arm_b: std::array::from_fn(|i| point_vec(i, V3::from_fn(|k| c(k).points[i].r_b0).cross(n))),
+        base_separation: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].base_separation))),
+        coupling: std::array::from_fn(|e| L::from_fn(|k| c(k).coupling_start[e])),
+        bias_rate: L::from_fn(|k| c(k).softness.bias_rate),
+        mass_scale: L::from_fn(|k| c(k).softness.mass_scale),
+        impulse_scale: L::from_fn(|k| c(k).softness.impulse_scale),
+        lever_a: V3::from_fn(|k| c(k).friction.levers_start.0),
+        lever_b: V3::from_fn(|k| c(k).friction.levers_start.1),
+        twist_arms: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).friction.twist_arms[i]))),
+        tangent_mass: M3::from_fn(|k| c(k).friction.tangent_masses.0),
+        sliding_mass: L::from_fn(|k| c(k).friction.tangent_masses.1),
+        friction: L::from_fn(|k| c(k).material.friction),
+    }
+}
+
+/// The state of the manifolds `c(k)`, one per lane (`live`: their rows').
+#[inline(always)]
+fn gather_state<'a, L: Lane>(
+    live: &[L::Mask; MAX_POINTS],
+    c: impl Fn(usize) -> &'a ContactConstraint,
+) -> StillState<L> {
+    let point = |i: usize, x: L| live_or_zero(live, i, x);
+    StillState {
+        normal_impulse: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].normal_impulse))),
+        steady_normal: std::array::from_fn(|i| {
+            point(i, L::from_fn(|k| c(k).points[i].steady_normal_impulse))
+        }),
+        relative_velocity: std::array::from_fn(|i| {
+            point(i, L::from_fn(|k| c(k).points[i].relative_velocity))
+        }),
+        max_normal: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].max_normal_impulse))),
+        tangent_impulse: V3::from_fn(|k| c(k).friction.tangent_impulse),
+        twist_impulse: L::from_fn(|k| c(k).friction.twist_impulse),
+        other_impulse: L::mask_from_fn(|k| {
+            c(k).torsional_impulse != 0.0 || c(k).rolling_impulse != DVec3::ZERO
+        }),
+    }
+}
+
+/// The full symmetric `K` from its packed entries.
+#[inline(always)]
+fn unpack_coupling<L: Lane>(packed: &[L; COUPLING_ENTRIES]) -> [[L; MAX_POINTS]; MAX_POINTS] {
     let mut coupling = [[L::splat(0.0); MAX_POINTS]; MAX_POINTS];
     let mut next = 0;
     for i in 0..MAX_POINTS {
@@ -115,40 +174,7 @@ fn gather_still<'a, L: Lane>(c: impl Fn(usize) -> &'a ContactConstraint) -> Stil
             next += 1;
         }
     }
-    let n = V3::from_fn(|k| c(k).normal);
-    StillLanes {
-        live,
-        count: L::from_fn(|k| c(k).point_count.max(1) as f64),
-        n,
-        // The normal rows' angular Jacobians at the step start, `r⁰ × n` (computed here rather
-        // than stored: a large pile's rows are bound by memory, not by these products).
-        arm_a: std::array::from_fn(|i| point_vec(i, V3::from_fn(|k| c(k).points[i].r_a0).cross(n))),
-        arm_b: std::array::from_fn(|i| point_vec(i, V3::from_fn(|k| c(k).points[i].r_b0).cross(n))),
-        base_separation: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].base_separation))),
-        normal_impulse: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].normal_impulse))),
-        steady_normal: std::array::from_fn(|i| {
-            point(i, L::from_fn(|k| c(k).points[i].steady_normal_impulse))
-        }),
-        relative_velocity: std::array::from_fn(|i| {
-            point(i, L::from_fn(|k| c(k).points[i].relative_velocity))
-        }),
-        max_normal: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].max_normal_impulse))),
-        coupling,
-        bias_rate: L::from_fn(|k| c(k).softness.bias_rate),
-        mass_scale: L::from_fn(|k| c(k).softness.mass_scale),
-        impulse_scale: L::from_fn(|k| c(k).softness.impulse_scale),
-        lever_a: V3::from_fn(|k| c(k).friction.levers_start.0),
-        lever_b: V3::from_fn(|k| c(k).friction.levers_start.1),
-        twist_arms: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).friction.twist_arms[i]))),
-        tangent_mass: M3::from_fn(|k| c(k).friction.tangent_masses.0),
-        sliding_mass: L::from_fn(|k| c(k).friction.tangent_masses.1),
-        tangent_impulse: V3::from_fn(|k| c(k).friction.tangent_impulse),
-        twist_impulse: L::from_fn(|k| c(k).friction.twist_impulse),
-        friction: L::from_fn(|k| c(k).material.friction),
-        other_impulse: L::mask_from_fn(|k| {
-            c(k).torsional_impulse != 0.0 || c(k).rolling_impulse != DVec3::ZERO
-        }),
-    }
+    coupling
 }
 
 /// The block of normal rows of one pass, per lane (`NormalBlock`'s inputs).
@@ -200,7 +226,7 @@ fn apply_point_impulse<L: Lane>(
 /// Normal impulses `λᵢ n` at the step-start levers (`apply_still_normal_impulses`).
 #[inline(always)]
 fn apply_normal_impulses<L: Lane>(
-    m: &StillLanes<L>,
+    rows: &StillRows<L>,
     a: &mut BodyLanes<L>,
     b: &mut BodyLanes<L>,
     impulses: &[L; MAX_POINTS],
@@ -211,24 +237,29 @@ fn apply_normal_impulses<L: Lane>(
     for i in 0..MAX_POINTS {
         let l = impulses[i];
         total = total + l;
-        torque_a = torque_a + m.arm_a[i].scale(l);
-        torque_b = torque_b + m.arm_b[i].scale(l);
+        torque_a = torque_a + rows.arm_a[i].scale(l);
+        torque_b = torque_b + rows.arm_b[i].scale(l);
     }
-    apply_impulse_and_moments(a, b, m.n.scale(total), torque_a, torque_b);
+    apply_impulse_and_moments(a, b, rows.n.scale(total), torque_a, torque_b);
 }
 
 /// Stage "warm start" of still manifolds; returns the lanes that apply anything (with any
 /// impulse accumulated).
 #[inline(always)]
-fn warm_start_pass<L: Lane>(m: &StillLanes<L>, a: &mut BodyLanes<L>, b: &mut BodyLanes<L>) -> L::Mask {
-    let active = has_impulse(m);
+fn warm_start_pass<L: Lane>(
+    rows: &StillRows<L>,
+    m: &StillState<L>,
+    a: &mut BodyLanes<L>,
+    b: &mut BodyLanes<L>,
+) -> L::Mask {
+    let active = has_impulse(&rows.live, m);
     if !L::any(active) {
         return active;
     }
     let (a_before, b_before) = (*a, *b);
-    apply_normal_impulses(m, a, b, &m.normal_impulse);
-    apply_point_impulse(a, b, m.lever_a, m.lever_b, m.tangent_impulse);
-    let twist = m.n.scale(m.twist_impulse);
+    apply_normal_impulses(rows, a, b, &m.normal_impulse);
+    apply_point_impulse(a, b, rows.lever_a, rows.lever_b, m.tangent_impulse);
+    let twist = rows.n.scale(m.twist_impulse);
     a.w = a.w - a.inv_inertia.mul_vec3(twist);
     b.w = b.w + b.inv_inertia.mul_vec3(twist);
     keep_inactive(active, a, b, &a_before, &b_before);
@@ -237,11 +268,11 @@ fn warm_start_pass<L: Lane>(m: &StillLanes<L>, a: &mut BodyLanes<L>, b: &mut Bod
 
 /// Whether any impulse is accumulated (`ContactConstraint::has_impulse`).
 #[inline(always)]
-fn has_impulse<L: Lane>(m: &StillLanes<L>) -> L::Mask {
+fn has_impulse<L: Lane>(live: &[L::Mask; MAX_POINTS], m: &StillState<L>) -> L::Mask {
     let zero = L::splat(0.0);
     let mut any = m.tangent_impulse.ne_zero() | m.twist_impulse.ne(zero) | m.other_impulse;
     for i in 0..MAX_POINTS {
-        any = any | (m.live[i] & m.normal_impulse[i].ne(zero));
+        any = any | (live[i] & m.normal_impulse[i].ne(zero));
     }
     any
 }
@@ -273,7 +304,7 @@ fn keep_inactive<L: Lane>(
 /// docs/solver.md, "Still pairs".)
 #[inline(always)]
 fn rows_now<L: Lane>(
-    m: &StillLanes<L>,
+    m: &StillRows<L>,
     a: &BodyLanes<L>,
     b: &BodyLanes<L>,
 ) -> ([L; MAX_POINTS], [L; MAX_POINTS]) {
@@ -292,7 +323,8 @@ fn rows_now<L: Lane>(
 /// the others are idle (`ContactConstraint::is_idle`), and nothing of theirs changes.
 #[inline(always)]
 fn solve_pass<L: Lane>(
-    m: &mut StillLanes<L>,
+    rows: &StillRows<L>,
+    m: &mut StillState<L>,
     a: &mut BodyLanes<L>,
     b: &mut BodyLanes<L>,
     ctx: &StepContext,
@@ -300,22 +332,24 @@ fn solve_pass<L: Lane>(
     block: impl FnOnce(&BlockLanes<L>, L::Mask) -> [L; MAX_POINTS],
 ) -> L::Mask {
     let zero = L::splat(0.0);
-    let steady = sum_live(&m.live, |i| m.steady_normal[i]) / m.count;
-    let (separations, normal_velocities) = rows_now(m, a, b);
+    let live = &rows.live;
+    let steady = sum_live(live, |i| m.steady_normal[i]) / rows.count;
+    let (separations, normal_velocities) = rows_now(rows, a, b);
     let (soft_band, inv_h) = (L::splat(SOFT_BAND), L::splat(ctx.inv_h));
     let mut apart = L::mask_splat(true);
     for i in 0..MAX_POINTS {
         let (s, vn) = (separations[i], normal_velocities[i]);
-        apart = apart & (!m.live[i] | (s.gt(soft_band) & (vn + s * inv_h).ge(zero)));
+        apart = apart & (!live[i] | (s.gt(soft_band) & (vn + s * inv_h).ge(zero)));
     }
-    let active = !(apart & !has_impulse(m));
+    let active = !(apart & !has_impulse(live, m));
     if !L::any(active) {
         return active;
     }
     let (a_before, b_before) = (*a, *b);
 
+    let coupling = unpack_coupling(&rows.coupling);
     let mut inputs = BlockLanes {
-        matrix: m.coupling,
+        matrix: coupling,
         rhs: [zero; MAX_POINTS],
         accumulated: m.normal_impulse,
         soft: [L::mask_splat(false); MAX_POINTS],
@@ -325,35 +359,34 @@ fn solve_pass<L: Lane>(
         let s = separations[i];
         let speculative = s.gt(soft_band);
         let (bias, mass_scale, impulse_scale) = if use_bias {
-            let soft_bias = Lane::max(m.bias_rate * s, L::splat(-ctx.max_contact_push_velocity));
+            let soft_bias = Lane::max(rows.bias_rate * s, L::splat(-ctx.max_contact_push_velocity));
             (
                 L::select(speculative, s * inv_h, soft_bias),
-                L::select(speculative, one, m.mass_scale),
-                L::select(speculative, zero, m.impulse_scale),
+                L::select(speculative, one, rows.mass_scale),
+                L::select(speculative, zero, rows.impulse_scale),
             )
         } else {
             (L::select(speculative, s * inv_h, zero), one, zero)
         };
         let vn = normal_velocities[i];
-        let engaged = m.live[i] & (vn + bias).lt(zero);
+        let engaged = live[i] & (vn + bias).lt(zero);
         m.relative_velocity[i] =
             L::select(engaged, Lane::min(m.relative_velocity[i], vn), m.relative_velocity[i]);
-        let k_ii = m.coupling[i][i];
+        let k_ii = coupling[i][i];
         let gamma = L::select(mass_scale.gt(zero), k_ii * impulse_scale / mass_scale, zero);
-        inputs.soft[i] = m.live[i] & gamma.ne(zero);
+        inputs.soft[i] = live[i] & gamma.ne(zero);
         inputs.rhs[i] = -(vn + bias) - gamma * (m.normal_impulse[i] - steady);
         inputs.matrix[i][i] = inputs.matrix[i][i] + gamma;
     }
     let deltas = block(&inputs, active);
     for i in 0..MAX_POINTS {
-        let live = m.live[i];
         let applied = deltas[i];
         let impulse = Lane::max(m.normal_impulse[i] + applied, zero);
-        m.normal_impulse[i] = L::select(live, impulse, m.normal_impulse[i]);
-        m.max_normal[i] = L::select(live, Lane::max(m.max_normal[i], applied), m.max_normal[i]);
+        m.normal_impulse[i] = L::select(live[i], impulse, m.normal_impulse[i]);
+        m.max_normal[i] = L::select(live[i], Lane::max(m.max_normal[i], applied), m.max_normal[i]);
     }
-    apply_normal_impulses(m, a, b, &deltas);
-    friction_pass(m, a, b);
+    apply_normal_impulses(rows, a, b, &deltas);
+    friction_pass(rows, m, a, b);
     keep_inactive(active, a, b, &a_before, &b_before);
     active
 }
@@ -361,11 +394,16 @@ fn solve_pass<L: Lane>(
 /// Friction at the manifold's centre, bounded by its normal impulses (`PatchFriction::solve`,
 /// with the step-start levers of a still pair).
 #[inline(always)]
-fn friction_pass<L: Lane>(m: &mut StillLanes<L>, a: &mut BodyLanes<L>, b: &mut BodyLanes<L>) {
+fn friction_pass<L: Lane>(
+    rows: &StillRows<L>,
+    m: &mut StillState<L>,
+    a: &mut BodyLanes<L>,
+    b: &mut BodyLanes<L>,
+) {
     let zero = L::splat(0.0);
-    let n = m.n;
-    let total = sum_live(&m.live, |i| m.normal_impulse[i]);
-    let twist_limit = m.friction * sum_live(&m.live, |i| m.normal_impulse[i] * m.twist_arms[i]);
+    let n = rows.n;
+    let total = sum_live(&rows.live, |i| m.normal_impulse[i]);
+    let twist_limit = rows.friction * sum_live(&rows.live, |i| m.normal_impulse[i] * rows.twist_arms[i]);
     let loaded = twist_limit.gt(zero);
     let old = m.twist_impulse;
     let unloaded = !loaded & old.ne(zero);
@@ -391,17 +429,17 @@ fn friction_pass<L: Lane>(m: &mut StillLanes<L>, a: &mut BodyLanes<L>, b: &mut B
     b.w = w_b;
     m.twist_impulse = twist;
 
-    let (r_a, r_b) = (m.lever_a, m.lever_b);
+    let (r_a, r_b) = (rows.lever_a, rows.lever_b);
     let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
     let vt = dv - n.scale(n.dot(dv));
     let old = m.tangent_impulse;
-    let sticking = old - m.tangent_mass.mul_vec3(vt);
-    let max = m.friction * total;
+    let sticking = old - rows.tangent_mass.mul_vec3(vt);
+    let max = rows.friction * total;
     let sliding = sticking.length().gt(max);
     let mut new = sticking;
     if L::any(sliding) {
         // Sliding: the isotropic mass, whose fixed point on the rim opposes the slip.
-        let slide = old - vt.scale(m.sliding_mass);
+        let slide = old - vt.scale(rows.sliding_mass);
         let len = slide.length();
         let slide = V3::select(len.gt(max), slide.scale(max / len), slide);
         new = V3::select(sliding, slide, sticking);
@@ -435,7 +473,7 @@ fn block_alone(
 
 /// Writes lane `k`'s state back into its manifold.
 #[inline(always)]
-fn scatter_still<L: Lane>(m: &StillLanes<L>, k: usize, c: &mut ContactConstraint) {
+fn scatter_state<L: Lane>(m: &StillState<L>, k: usize, c: &mut ContactConstraint) {
     for (i, pc) in c.points[..c.point_count].iter_mut().enumerate() {
         pc.normal_impulse = m.normal_impulse[i].lane(k);
         pc.relative_velocity = m.relative_velocity[i].lane(k);
@@ -462,15 +500,16 @@ impl ContactConstraint {
         a: &SolverBody,
         b: &SolverBody,
     ) -> ([f64; MAX_POINTS], [f64; MAX_POINTS]) {
-        let m = gather_still::<f64>(|_| self);
-        rows_now(&m, &BodyLanes::gather(|_| a), &BodyLanes::gather(|_| b))
+        let rows = gather_rows::<f64>(|_| self);
+        rows_now(&rows, &BodyLanes::gather(|_| a), &BodyLanes::gather(|_| b))
     }
 
     /// Stage "warm start" of a still manifold alone (see the module docs).
     pub(super) fn warm_start_still(&self, a: &mut SolverBody, b: &mut SolverBody) {
-        let m = gather_still::<f64>(|_| self);
+        let rows = gather_rows::<f64>(|_| self);
+        let m = gather_state::<f64>(&rows.live, |_| self);
         let (mut la, mut lb) = (BodyLanes::<f64>::gather(|_| &*a), BodyLanes::gather(|_| &*b));
-        if warm_start_pass(&m, &mut la, &mut lb) {
+        if warm_start_pass(&rows, &m, &mut la, &mut lb) {
             (a.v, a.w, b.v, b.w) = (la.v.lane(0), la.w.lane(0), lb.v.lane(0), lb.w.lane(0));
         }
     }
@@ -484,9 +523,10 @@ impl ContactConstraint {
         ctx: &StepContext,
         use_bias: bool,
     ) -> Option<f64> {
-        let mut m = gather_still::<f64>(|_| self);
+        let rows = gather_rows::<f64>(|_| self);
+        let mut m = gather_state::<f64>(&rows.live, |_| self);
         let (mut la, mut lb) = (BodyLanes::<f64>::gather(|_| &*a), BodyLanes::gather(|_| &*b));
-        let active = solve_pass(&mut m, &mut la, &mut lb, ctx, use_bias, |inputs, _| {
+        let active = solve_pass(&rows, &mut m, &mut la, &mut lb, ctx, use_bias, |inputs, _| {
             block_alone(
                 self,
                 &inputs.matrix,
@@ -499,7 +539,7 @@ impl ContactConstraint {
         if !active {
             return None;
         }
-        scatter_still(&m, 0, self);
+        scatter_state(&m, 0, self);
         (a.v, a.w, b.v, b.w) = (la.v.lane(0), la.w.lane(0), lb.v.lane(0), lb.w.lane(0));
         Some(self.points[..self.point_count].iter().fold(0.0, |t, pc| t + pc.normal_impulse))
     }
@@ -508,11 +548,42 @@ impl ContactConstraint {
 /// The new velocities `(v, ω)` of a group's bodies, `[a₀, b₀, a₁, b₁, …]`.
 pub(crate) type GroupVelocities = [(DVec3, DVec3); 2 * GROUP];
 
-/// Whether the four manifolds can go as a group now: each fits the lanes and both its bodies are
-/// still.
-#[inline]
-fn group_is_still(contacts: &[ContactConstraint], bodies: &[&SolverBody; 2 * GROUP]) -> bool {
-    (0..GROUP).all(|k| contacts[k].fits_lanes() && bodies[2 * k].still && bodies[2 * k + 1].still)
+/// The rows of four manifolds of one colour side by side (places `4j..4j + 4` in colour order),
+/// written once a step for its groups: their passes then load the rows whole instead of gathering
+/// some seventy numbers from four manifolds each time, and read them in place rather than from a
+/// copy in the lane state.
+#[derive(Clone, Copy)]
+pub(crate) struct StillBlock {
+    rows: StillRows<f64x4>,
+    point_counts: [usize; GROUP],
+    /// Every manifold fits the lanes (`fits_lanes`).
+    fits_lanes: bool,
+}
+
+impl Default for StillBlock {
+    fn default() -> Self {
+        StillBlock::of(&[], 0)
+    }
+}
+
+impl StillBlock {
+    /// The block of the manifolds at `first..first + 4` of `contacts` (an empty manifold past the
+    /// end, which no group takes).
+    pub(crate) fn of(contacts: &[ContactConstraint], first: usize) -> StillBlock {
+        let c = |k: usize| contacts.get(first + k).unwrap_or(&ContactConstraint::EMPTY);
+        StillBlock {
+            rows: gather_rows(c),
+            point_counts: std::array::from_fn(|k| c(k).point_count),
+            fits_lanes: (0..GROUP).all(|k| first + k < contacts.len() && c(k).fits_lanes()),
+        }
+    }
+
+    /// Whether the four manifolds can go as a group now: each fits the lanes and both its bodies
+    /// are still.
+    #[inline]
+    fn is_still(&self, bodies: &[&SolverBody; 2 * GROUP]) -> bool {
+        self.fits_lanes && bodies.iter().all(|body| body.still)
+    }
 }
 
 /// The velocities the lanes leave.
@@ -524,19 +595,21 @@ fn velocities(a: &BodyLanes<f64x4>, b: &BodyLanes<f64x4>) -> GroupVelocities {
     })
 }
 
-/// Stage "warm start" of four still manifolds of one colour at once (`bodies`: each one's a and
-/// b), or `None` when they are not all still (then each goes alone).
+/// Stage "warm start" of four still manifolds of one colour at once (`block`: their rows;
+/// `bodies`: each one's a and b), or `None` when they are not all still (then each goes alone).
 pub(crate) fn warm_start_group(
     contacts: &[ContactConstraint],
+    block: &StillBlock,
     bodies: &[&SolverBody; 2 * GROUP],
 ) -> Option<GroupVelocities> {
-    if !group_is_still(contacts, bodies) {
+    if !block.is_still(bodies) {
         return None;
     }
-    let m = gather_still::<f64x4>(|k| &contacts[k]);
+    let rows = &block.rows;
+    let m = gather_state::<f64x4>(&rows.live, |k| &contacts[k]);
     let mut a = BodyLanes::<f64x4>::gather(|k| bodies[2 * k]);
     let mut b = BodyLanes::<f64x4>::gather(|k| bodies[2 * k + 1]);
-    warm_start_pass(&m, &mut a, &mut b);
+    warm_start_pass(rows, &m, &mut a, &mut b);
     Some(velocities(&a, &b))
 }
 
@@ -545,24 +618,24 @@ pub(crate) fn warm_start_group(
 /// point) solves its block alone, as the one-manifold path does.
 pub(crate) fn solve_group(
     contacts: &mut [ContactConstraint],
+    block: &StillBlock,
     bodies: &[&SolverBody; 2 * GROUP],
     ctx: &StepContext,
     use_bias: bool,
 ) -> Option<GroupVelocities> {
-    if !group_is_still(contacts, bodies) {
+    if !block.is_still(bodies) {
         return None;
     }
-    let mut m = gather_still::<f64x4>(|k| &contacts[k]);
+    let rows = &block.rows;
+    let mut m = gather_state::<f64x4>(&rows.live, |k| &contacts[k]);
     let mut a = BodyLanes::<f64x4>::gather(|k| bodies[2 * k]);
     let mut b = BodyLanes::<f64x4>::gather(|k| bodies[2 * k + 1]);
-    let live = m.live;
-    let counts: [usize; GROUP] = std::array::from_fn(|k| contacts[k].point_count);
-    let active = solve_pass(&mut m, &mut a, &mut b, ctx, use_bias, |inputs, active| {
-        block_group(contacts, &counts, &live, inputs, active, use_bias)
+    let active = solve_pass(rows, &mut m, &mut a, &mut b, ctx, use_bias, |inputs, active| {
+        block_group(contacts, &block.point_counts, &rows.live, inputs, active, use_bias)
     });
     for (k, contact) in contacts.iter_mut().enumerate().take(GROUP) {
         if <f64x4 as Lane>::mask_lane(active, k) {
-            scatter_still(&m, k, contact);
+            scatter_state(&m, k, contact);
         }
     }
     Some(velocities(&a, &b))

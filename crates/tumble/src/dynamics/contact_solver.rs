@@ -725,7 +725,7 @@ impl ContactConstraint {
 
 #[path = "contact_lanes.rs"]
 mod lanes;
-pub(crate) use lanes::{solve_group, warm_start_group, GroupVelocities, GROUP, GROUPS_PAY};
+pub(crate) use lanes::{solve_group, warm_start_group, GroupVelocities, StillBlock, GROUP, GROUPS_PAY};
 
 #[cfg(test)]
 #[path = "contact_solver_tests.rs"]

@@ -21,7 +21,7 @@ use crate::body::{Body, BodyKind};
 use crate::collision::contact_manager::leaf;
 use crate::dynamics::contact::Contact;
 use crate::dynamics::contact_solver::{
-    solve_group, warm_start_group, ContactConstraint, ContactPointInput, GROUPS_PAY,
+    solve_group, warm_start_group, ContactConstraint, ContactPointInput, StillBlock, GROUP, GROUPS_PAY,
 };
 use crate::dynamics::joint::Joint;
 use crate::dynamics::softness::Softness;
@@ -356,9 +356,14 @@ impl World {
         let in_lanes = self
             .contacts_in_groups
             .unwrap_or(GROUPS_PAY && contacts.len() <= GROUPS_MAX_CONTACTS_PER_THREAD * thread_count);
+        let mut blocks = std::mem::take(&mut self.still_blocks);
+        blocks.clear();
+        if in_lanes {
+            blocks.resize_with(contacts.len().div_ceil(GROUP), StillBlock::default);
+        }
         let mut serial = (&mut self.joints, &mut trees);
         let lists = (&partition.constrained[..], &partition.unconstrained[..]);
-        let data = SolveData::new(&mut bodies, lists, &mut contacts, &colouring, &mut serial);
+        let data = SolveData::new(&mut bodies, lists, &mut contacts, &mut blocks, &colouring, &mut serial);
         let ctx = &ctx;
         let projection_iterations = self.solver_settings.joint_projection_iterations;
         let projection_tolerance = self.solver_settings.joint_projection_tolerance;
@@ -366,6 +371,8 @@ impl World {
         // bias (`JointTrees::project_positions`).
         let tree_bias_rate = if ctx.project_joint_trees { 0.0 } else { ctx.joint_softness.bias_rate };
         run_on_threads(threads, |thread| {
+            // The rows of the still manifolds' groups, for the step (contact_lanes.rs).
+            data.fill_blocks(thread);
             // A body no constraint acts on goes through all its substeps at once.
             data.unconstrained_bodies(thread, |bodies| {
                 SolverBody::integrate_unconstrained(bodies, ctx.gravity, ctx.h, ctx.substeps)
@@ -382,17 +389,15 @@ impl World {
                 // the same numbers as one at a time.
                 data.contacts_in_groups(
                     thread,
-                    in_lanes,
                     |c, a, b| c.warm_start(a, b),
-                    |cs, bodies| warm_start_group(cs, bodies),
+                    |cs, block, bodies| warm_start_group(cs, block, bodies),
                 );
                 for _ in 0..ctx.solve_iterations {
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, true));
                     data.contacts_in_groups(
                         thread,
-                        in_lanes,
                         |c, a, b| c.solve(a, b, ctx, true),
-                        |cs, bodies| solve_group(cs, bodies, ctx, true),
+                        |cs, block, bodies| solve_group(cs, block, bodies, ctx, true),
                     );
                     if has_joints {
                         data.serial(thread, |(joints, trees), bodies| {
@@ -423,15 +428,14 @@ impl World {
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, false));
                     data.contacts_in_groups(
                         thread,
-                        in_lanes,
                         |c, a, b| {
                             c.solve(a, b, ctx, false);
                             if learn && last_sweep {
                                 c.update_steady_load(ctx.steady_load_time, ctx.h);
                             }
                         },
-                        |cs, bodies| {
-                            let velocities = solve_group(cs, bodies, ctx, false)?;
+                        |cs, block, bodies| {
+                            let velocities = solve_group(cs, block, bodies, ctx, false)?;
                             if learn && last_sweep {
                                 cs.iter_mut().for_each(|c| c.update_steady_load(ctx.steady_load_time, ctx.h));
                             }
@@ -467,6 +471,7 @@ impl World {
         self.solved_contacts = solved;
         self.contact_colouring = colouring;
         self.contact_constraints = contacts;
+        self.still_blocks = blocks;
         self.body_partition = partition;
         self.joint_trees = trees;
 

@@ -18,7 +18,7 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use crate::dynamics::colouring::ContactColouring;
-use crate::dynamics::contact_solver::{ContactConstraint, GroupVelocities, GROUP};
+use crate::dynamics::contact_solver::{ContactConstraint, GroupVelocities, StillBlock, GROUP};
 use crate::dynamics::solver_body::SolverBody;
 use crate::step_threads::StepThreads;
 
@@ -133,6 +133,9 @@ pub(crate) struct SolveData<'a, S> {
     /// The moving bodies no constraint acts on (strictly increasing slots).
     unconstrained: &'a [u32],
     contacts: Shared<'a, ContactConstraint>,
+    /// The rows of the contacts four at a time, `blocks[j]` those at `4j..4j + 4` (empty unless
+    /// the contacts go in groups): see `fill_blocks`.
+    blocks: Shared<'a, StillBlock>,
     colouring: &'a ContactColouring,
     /// The state the stages that are not split work on (joints, joint trees).
     serial: Shared<'a, S>,
@@ -145,9 +148,14 @@ impl<'a, S: Send> SolveData<'a, S> {
         bodies: &'a mut [SolverBody],
         (constrained, unconstrained): (&'a [u32], &'a [u32]),
         contacts: &'a mut [ContactConstraint],
+        blocks: &'a mut [StillBlock],
         colouring: &'a ContactColouring,
         serial: &'a mut S,
     ) -> Self {
+        assert!(
+            blocks.is_empty() || blocks.len() == contacts.len().div_ceil(GROUP),
+            "a block per four contacts"
+        );
         for list in [constrained, unconstrained] {
             assert!(list.windows(2).all(|w| w[0] < w[1]), "body lists must be strictly increasing");
             assert!(list.last().is_none_or(|&i| (i as usize) < bodies.len()), "body slot out of range");
@@ -157,6 +165,7 @@ impl<'a, S: Send> SolveData<'a, S> {
             constrained,
             unconstrained,
             contacts: Shared::new(contacts),
+            blocks: Shared::new(blocks),
             colouring,
             serial: Shared::new(std::slice::from_mut(serial)),
         }
@@ -227,18 +236,42 @@ impl<'a, S: Send> SolveData<'a, S> {
         }
     }
 
-    /// As `contacts_with_bodies`, but where `grouped`, four constraints of one colour at a time go
-    /// to `group` (with their bodies, `[a₀, b₀, a₁, b₁, …]`), which returns the bodies' new
+    /// The blocks of rows of the contacts (`StillBlock`), each thread its share, once the
+    /// contacts are prepared; nothing if there are no blocks.
+    pub fn fill_blocks(&self, thread: SolverThread) {
+        if self.blocks.len == 0 {
+            return;
+        }
+        let mine = thread.share(0..self.blocks.len);
+        // SAFETY: this thread's share of the blocks, and only read of the contacts, which no
+        // thread writes until the barrier.
+        let (blocks, contacts) = unsafe {
+            let first = mine.start * GROUP;
+            let contacts = self.contacts.slice(first..(mine.end * GROUP).min(self.contacts.len));
+            (self.blocks.slice(mine), contacts)
+        };
+        for (j, block) in blocks.iter_mut().enumerate() {
+            *block = StillBlock::of(contacts, j * GROUP);
+        }
+        thread.sync();
+    }
+
+    /// As `contacts_with_bodies`, but where there are blocks (`fill_blocks`), the four
+    /// constraints of a block that lies within one colour and this thread's share go to `group`
+    /// (with the block and their bodies, `[a₀, b₀, a₁, b₁, …]`), which returns the bodies' new
     /// velocities, or `None` to have `f` take them one by one. The rest of a colour, and the
     /// overflow, go to `f`. `group` must give each constraint what `f` gives it alone.
     pub fn contacts_in_groups(
         &self,
         thread: SolverThread,
-        grouped: bool,
         f: impl Fn(&mut ContactConstraint, &mut SolverBody, &mut SolverBody),
-        group: impl Fn(&mut [ContactConstraint], &[&SolverBody; 2 * GROUP]) -> Option<GroupVelocities>,
+        group: impl Fn(
+            &mut [ContactConstraint],
+            &StillBlock,
+            &[&SolverBody; 2 * GROUP],
+        ) -> Option<GroupVelocities>,
     ) {
-        if !grouped {
+        if self.blocks.len == 0 {
             return self.contacts_with_bodies(thread, f);
         }
         for (run, split) in self.colouring.stages() {
@@ -254,24 +287,44 @@ impl<'a, S: Send> SolveData<'a, S> {
                 // SAFETY: as in `contacts_with_bodies`: this thread's share of one colour (or a
                 // serial run on the first thread alone), until the barrier.
                 let part = unsafe { self.contacts.slice(start..end) };
-                let alone = if colour_end.is_some() {
-                    let mut groups = part.chunks_exact_mut(GROUP);
-                    for contacts in &mut groups {
-                        // SAFETY: the constraints are of one colour, so their dynamic bodies are
-                        // distinct and this thread's until the barrier.
-                        if !unsafe { self.bodies.with_group(contacts, &group) } {
-                            for c in contacts {
-                                unsafe { self.bodies.with_pair(c.body_a, c.body_b, |a, b| f(c, a, b)) };
-                            }
-                        }
-                    }
-                    groups.into_remainder()
-                } else {
-                    part
+                // The whole blocks within the colour, `first_block..end_block`, in groups; the
+                // places before and after them one by one.
+                let (first_block, end_block) = match colour_end {
+                    Some(_) => (start.div_ceil(GROUP), end / GROUP),
+                    None => (0, 0),
                 };
-                for c in alone {
+                let alone_one = |c: &mut ContactConstraint| {
                     // SAFETY: as in `contacts_with_bodies`.
                     unsafe { self.bodies.with_pair(c.body_a, c.body_b, |a, b| f(c, a, b)) };
+                };
+                if first_block < end_block {
+                    let (head, rest) = part.split_at_mut(first_block * GROUP - start);
+                    let (grouped, tail) = rest.split_at_mut((end_block - first_block) * GROUP);
+                    head.iter_mut().for_each(alone_one);
+                    // SAFETY: this thread's blocks (those of its contacts) until the barrier;
+                    // only read.
+                    let blocks = unsafe { self.blocks.slice(first_block..end_block) };
+                    for (contacts, block) in grouped.chunks_exact_mut(GROUP).zip(blocks.iter()) {
+                        // SAFETY: the constraints are of one colour, so their dynamic bodies are
+                        // distinct and this thread's until the barrier.
+                        let took = unsafe {
+                            let slots = std::array::from_fn(|j| {
+                                let c = &contacts[j / 2];
+                                if j % 2 == 0 {
+                                    c.body_a
+                                } else {
+                                    c.body_b
+                                }
+                            });
+                            self.bodies.with_group(slots, |bodies| group(contacts, block, bodies))
+                        };
+                        if !took {
+                            contacts.iter_mut().for_each(alone_one);
+                        }
+                    }
+                    tail.iter_mut().for_each(alone_one);
+                } else {
+                    part.iter_mut().for_each(alone_one);
                 }
                 start = end;
             }
@@ -394,26 +447,24 @@ impl Shared<'_, SolverBody> {
 }
 
 impl Shared<'_, SolverBody> {
-    /// Calls `group` with the bodies of `contacts` (`[a₀, b₀, a₁, b₁, …]`) and, when it returns
-    /// velocities, writes them into the dynamic ones (the others, which do not move, are only
-    /// read). Returns whether `group` took the constraints.
+    /// Calls `group` with the bodies at `slots` (four constraints' `[a₀, b₀, a₁, b₁, …]`) and,
+    /// when it returns velocities, writes them into the dynamic ones (the others, which do not
+    /// move, are only read). Returns whether `group` took the constraints.
     ///
     /// # Safety
-    /// The constraints' dynamic bodies must be distinct, and no other thread may use them until
+    /// The dynamic bodies must be distinct, and no other thread may use them until
     /// the next barrier.
     unsafe fn with_group(
         &self,
-        contacts: &mut [ContactConstraint],
-        group: impl Fn(&mut [ContactConstraint], &[&SolverBody; 2 * GROUP]) -> Option<GroupVelocities>,
+        slots: [usize; 2 * GROUP],
+        group: impl FnOnce(&[&SolverBody; 2 * GROUP]) -> Option<GroupVelocities>,
     ) -> bool {
-        let slots: [usize; 2 * GROUP] =
-            std::array::from_fn(|j| if j % 2 == 0 { contacts[j / 2].body_a } else { contacts[j / 2].body_b });
         assert!(slots.iter().all(|&slot| slot < self.len), "body slot out of range");
         // SAFETY: in bounds (checked); only read here, and written below once these references
         // are no longer used.
         let bodies: [&SolverBody; 2 * GROUP] = std::array::from_fn(|j| unsafe { &*self.ptr.add(slots[j]) });
         let dynamic: [bool; 2 * GROUP] = std::array::from_fn(|j| bodies[j].is_dynamic());
-        let Some(velocities) = group(contacts, &bodies) else { return false };
+        let Some(velocities) = group(&bodies) else { return false };
         for (j, &slot) in slots.iter().enumerate() {
             if dynamic[j] {
                 // SAFETY: a dynamic body is this thread's alone (the caller's contract), and
