@@ -91,9 +91,11 @@ struct StillRows<L: Lane> {
 
 /// What the passes change of a still manifold (and the steady loads, which change between
 /// substeps), a manifold per lane.
+#[derive(Clone, Copy)]
 struct StillState<L: Lane> {
     normal_impulse: [L; MAX_POINTS],
     steady_normal: [L; MAX_POINTS],
+    steady_age: [L; MAX_POINTS],
     relative_velocity: [L; MAX_POINTS],
     max_normal: [L; MAX_POINTS],
     tangent_impulse: V3<L>,
@@ -150,6 +152,7 @@ fn gather_state<'a, L: Lane>(
         steady_normal: std::array::from_fn(|i| {
             point(i, L::from_fn(|k| c(k).points[i].steady_normal_impulse))
         }),
+        steady_age: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).points[i].steady_age))),
         relative_velocity: std::array::from_fn(|i| {
             point(i, L::from_fn(|k| c(k).points[i].relative_velocity))
         }),
@@ -453,6 +456,7 @@ fn friction_pass<L: Lane>(
 /// manifold's free rows. `soft` is the key of the kept factors.
 fn block_alone(
     c: &mut ContactConstraint,
+    free_rows: &mut RowSet,
     matrix: &[[f64; MAX_POINTS]; MAX_POINTS],
     rhs: &[f64; MAX_POINTS],
     accumulated: &[f64; MAX_POINTS],
@@ -466,21 +470,44 @@ fn block_alone(
         block.matrix[i] = matrix[i];
     }
     let kept = Some((&mut c.free_factors[usize::from(use_bias)], soft));
-    let (deltas, free_rows) = block.solve_or_one_by_one(accumulated, c.free_rows, kept);
-    c.free_rows = free_rows;
+    let deltas;
+    (deltas, *free_rows) = block.solve_or_one_by_one(accumulated, *free_rows, kept);
     deltas
 }
 
-/// Writes lane `k`'s state back into its manifold.
+/// Writes what a pass changes of lane `k`'s state back into its manifold (`steady`: the steady
+/// loads too).
 #[inline(always)]
-fn scatter_state<L: Lane>(m: &StillState<L>, k: usize, c: &mut ContactConstraint) {
+fn scatter_state<L: Lane>(m: &StillState<L>, k: usize, c: &mut ContactConstraint, steady: bool) {
     for (i, pc) in c.points[..c.point_count].iter_mut().enumerate() {
         pc.normal_impulse = m.normal_impulse[i].lane(k);
         pc.relative_velocity = m.relative_velocity[i].lane(k);
         pc.max_normal_impulse = m.max_normal[i].lane(k);
+        if steady {
+            pc.steady_normal_impulse = m.steady_normal[i].lane(k);
+            pc.steady_age = m.steady_age[i].lane(k);
+        }
     }
     c.friction.tangent_impulse = m.tangent_impulse.lane(k);
     c.friction.twist_impulse = m.twist_impulse.lane(k);
+}
+
+/// `if_true` in the lanes of `mask`, else `if_false`.
+#[inline(always)]
+fn select_state<L: Lane>(mask: L::Mask, if_true: &StillState<L>, if_false: &StillState<L>) -> StillState<L> {
+    let each = |t: &[L; MAX_POINTS], f: &[L; MAX_POINTS]| -> [L; MAX_POINTS] {
+        std::array::from_fn(|i| L::select(mask, t[i], f[i]))
+    };
+    StillState {
+        normal_impulse: each(&if_true.normal_impulse, &if_false.normal_impulse),
+        steady_normal: each(&if_true.steady_normal, &if_false.steady_normal),
+        steady_age: each(&if_true.steady_age, &if_false.steady_age),
+        relative_velocity: each(&if_true.relative_velocity, &if_false.relative_velocity),
+        max_normal: each(&if_true.max_normal, &if_false.max_normal),
+        tangent_impulse: V3::select(mask, if_true.tangent_impulse, if_false.tangent_impulse),
+        twist_impulse: L::select(mask, if_true.twist_impulse, if_false.twist_impulse),
+        other_impulse: L::select_mask(mask, if_true.other_impulse, if_false.other_impulse),
+    }
 }
 
 impl ContactConstraint {
@@ -527,19 +554,23 @@ impl ContactConstraint {
         let mut m = gather_state::<f64>(&rows.live, |_| self);
         let (mut la, mut lb) = (BodyLanes::<f64>::gather(|_| &*a), BodyLanes::gather(|_| &*b));
         let active = solve_pass(&rows, &mut m, &mut la, &mut lb, ctx, use_bias, |inputs, _| {
-            block_alone(
+            let mut free_rows = self.free_rows;
+            let deltas = block_alone(
                 self,
+                &mut free_rows,
                 &inputs.matrix,
                 &inputs.rhs,
                 &inputs.accumulated,
                 row_set::<f64>(&inputs.soft, 0),
                 use_bias,
-            )
+            );
+            self.free_rows = free_rows;
+            deltas
         });
         if !active {
             return None;
         }
-        scatter_state(&m, 0, self);
+        scatter_state(&m, 0, self, false);
         (a.v, a.w, b.v, b.w) = (la.v.lane(0), la.w.lane(0), lb.v.lane(0), lb.w.lane(0));
         Some(self.points[..self.point_count].iter().fold(0.0, |t, pc| t + pc.normal_impulse))
     }
@@ -548,16 +579,23 @@ impl ContactConstraint {
 /// The new velocities `(v, ω)` of a group's bodies, `[a₀, b₀, a₁, b₁, …]`.
 pub(crate) type GroupVelocities = [(DVec3, DVec3); 2 * GROUP];
 
-/// The rows of four manifolds of one colour side by side (places `4j..4j + 4` in colour order),
-/// written once a step for its groups: their passes then load the rows whole instead of gathering
-/// some seventy numbers from four manifolds each time, and read them in place rather than from a
-/// copy in the lane state.
+/// Four manifolds of one colour side by side (places `4j..4j + 4` in colour order) for a step's
+/// groups: their rows, written once a step, and — from the first pass that takes them as a group
+/// until they go alone or the step's stages that read the manifolds (`give_back_state`) — their
+/// state. A group's passes then load both whole instead of gathering some hundred numbers from
+/// four manifolds and scattering what changed back each time, and read the rows in place rather
+/// than from a copy in the lane state.
 #[derive(Clone, Copy)]
 pub(crate) struct StillBlock {
     rows: StillRows<f64x4>,
     point_counts: [usize; GROUP],
     /// Every manifold fits the lanes (`fits_lanes`).
     fits_lanes: bool,
+    /// The manifolds' state is here, not in the manifolds.
+    state_here: bool,
+    state: StillState<f64x4>,
+    /// The rows each manifold's block last left free (`ContactConstraint::free_rows`).
+    free_rows: [RowSet; GROUP],
 }
 
 impl Default for StillBlock {
@@ -568,13 +606,17 @@ impl Default for StillBlock {
 
 impl StillBlock {
     /// The block of the manifolds at `first..first + 4` of `contacts` (an empty manifold past the
-    /// end, which no group takes).
+    /// end, which no group takes); their state stays with them.
     pub(crate) fn of(contacts: &[ContactConstraint], first: usize) -> StillBlock {
         let c = |k: usize| contacts.get(first + k).unwrap_or(&ContactConstraint::EMPTY);
+        let rows = gather_rows(c);
         StillBlock {
-            rows: gather_rows(c),
             point_counts: std::array::from_fn(|k| c(k).point_count),
             fits_lanes: (0..GROUP).all(|k| first + k < contacts.len() && c(k).fits_lanes()),
+            state_here: false,
+            state: gather_state(&rows.live, |_| &ContactConstraint::EMPTY),
+            free_rows: [ALL_ROWS; GROUP],
+            rows,
         }
     }
 
@@ -583,6 +625,44 @@ impl StillBlock {
     #[inline]
     fn is_still(&self, bodies: &[&SolverBody; 2 * GROUP]) -> bool {
         self.fits_lanes && bodies.iter().all(|body| body.still)
+    }
+
+    /// The state of `contacts` (the block's four) into the block, unless it is here.
+    #[inline]
+    fn take_state(&mut self, contacts: &[ContactConstraint]) {
+        if !self.state_here {
+            self.state = gather_state(&self.rows.live, |k| &contacts[k]);
+            self.free_rows = std::array::from_fn(|k| contacts[k].free_rows);
+            self.state_here = true;
+        }
+    }
+
+    /// The state back into `contacts` (the block's four), if it is here.
+    #[inline]
+    pub(crate) fn give_back_state(&mut self, contacts: &mut [ContactConstraint]) {
+        if self.state_here {
+            for (k, contact) in contacts.iter_mut().enumerate().take(GROUP) {
+                scatter_state(&self.state, k, contact, true);
+                contact.free_rows = self.free_rows[k];
+            }
+            self.state_here = false;
+        }
+    }
+
+    /// `ContactConstraint::update_steady_load` of the four manifolds, whose state must be here.
+    pub(crate) fn update_steady_loads(&mut self, steady_load_time: f64, h: f64) {
+        debug_assert!(self.state_here);
+        type L = f64x4;
+        let (lower, upper) = (L::splat(0.2 * steady_load_time), L::splat(steady_load_time));
+        let (h, one) = (L::splat(h), L::splat(1.0));
+        let m = &mut self.state;
+        for i in 0..MAX_POINTS {
+            let live = self.rows.live[i];
+            let (steady, age) = (m.steady_normal[i], m.steady_age[i]);
+            let rate = Lane::min(h / age.clamp(lower, upper), one);
+            m.steady_normal[i] = L::select(live, steady + rate * (m.normal_impulse[i] - steady), steady);
+            m.steady_age[i] = L::select(live, age + h, age);
+        }
     }
 }
 
@@ -595,49 +675,49 @@ fn velocities(a: &BodyLanes<f64x4>, b: &BodyLanes<f64x4>) -> GroupVelocities {
     })
 }
 
-/// Stage "warm start" of four still manifolds of one colour at once (`block`: their rows;
-/// `bodies`: each one's a and b), or `None` when they are not all still (then each goes alone).
+/// Stage "warm start" of four still manifolds of one colour at once (`block`: theirs; `bodies`:
+/// each one's a and b), or `None` when they are not all still (then each goes alone, with its
+/// state back).
 pub(crate) fn warm_start_group(
-    contacts: &[ContactConstraint],
-    block: &StillBlock,
+    contacts: &mut [ContactConstraint],
+    block: &mut StillBlock,
     bodies: &[&SolverBody; 2 * GROUP],
 ) -> Option<GroupVelocities> {
     if !block.is_still(bodies) {
+        block.give_back_state(contacts);
         return None;
     }
-    let rows = &block.rows;
-    let m = gather_state::<f64x4>(&rows.live, |k| &contacts[k]);
+    block.take_state(contacts);
     let mut a = BodyLanes::<f64x4>::gather(|k| bodies[2 * k]);
     let mut b = BodyLanes::<f64x4>::gather(|k| bodies[2 * k + 1]);
-    warm_start_pass(rows, &m, &mut a, &mut b);
+    warm_start_pass(&block.rows, &block.state, &mut a, &mut b);
     Some(velocities(&a, &b))
 }
 
 /// Stage "solve"/"relax" of four still manifolds of one colour at once, or `None` when they are
-/// not all still. A lane whose block does not take every row free in the first try (or has one
-/// point) solves its block alone, as the one-manifold path does.
+/// not all still (as `warm_start_group`). A lane whose block does not take every row free in the
+/// first try (or has one point) solves its block alone, as the one-manifold path does.
 pub(crate) fn solve_group(
     contacts: &mut [ContactConstraint],
-    block: &StillBlock,
+    block: &mut StillBlock,
     bodies: &[&SolverBody; 2 * GROUP],
     ctx: &StepContext,
     use_bias: bool,
 ) -> Option<GroupVelocities> {
     if !block.is_still(bodies) {
+        block.give_back_state(contacts);
         return None;
     }
-    let rows = &block.rows;
-    let mut m = gather_state::<f64x4>(&rows.live, |k| &contacts[k]);
+    block.take_state(contacts);
     let mut a = BodyLanes::<f64x4>::gather(|k| bodies[2 * k]);
     let mut b = BodyLanes::<f64x4>::gather(|k| bodies[2 * k + 1]);
-    let active = solve_pass(rows, &mut m, &mut a, &mut b, ctx, use_bias, |inputs, active| {
-        block_group(contacts, &block.point_counts, &rows.live, inputs, active, use_bias)
+    let StillBlock { rows, point_counts, state, free_rows, .. } = block;
+    let before = *state;
+    let active = solve_pass(rows, state, &mut a, &mut b, ctx, use_bias, |inputs, active| {
+        block_group(contacts, free_rows, point_counts, &rows.live, inputs, active, use_bias)
     });
-    for (k, contact) in contacts.iter_mut().enumerate().take(GROUP) {
-        if <f64x4 as Lane>::mask_lane(active, k) {
-            scatter_state(&m, k, contact);
-        }
-    }
+    // An idle lane's state is as it was (the one-manifold path leaves an idle manifold alone).
+    *state = select_state(active, state, &before);
     Some(velocities(&a, &b))
 }
 
@@ -646,8 +726,10 @@ pub(crate) fn solve_group(
 /// broke a condition turned over). Each active lane that needs more pivots solves its block
 /// alone, from the start. A single row is its scalar soft update, clamped.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn block_group(
     contacts: &mut [ContactConstraint],
+    free_rows: &mut [RowSet; GROUP],
     counts: &[usize; GROUP],
     live: &[f64x4; MAX_POINTS],
     inputs: &BlockLanes<f64x4>,
@@ -682,7 +764,7 @@ fn block_group(
         let first_broken: [usize; GROUP] = std::array::from_fn(|k| {
             (0..MAX_POINTS).find(|&i| <f64x4 as Lane>::mask_lane(broken[i], k)).unwrap_or(0)
         });
-        let guess: [RowSet; GROUP] = std::array::from_fn(|k| contacts[k].free_rows);
+        let guess: [RowSet; GROUP] = *free_rows;
         second_rows = std::array::from_fn(|i| {
             <f64x4 as Lane>::mask_from_fn(|k| {
                 if guess[k] & ALL_ROWS != ALL_ROWS {
@@ -714,18 +796,18 @@ fn block_group(
             let rhs = rhs.map(|r| r.lane(k));
             let accumulated = accumulated.map(|r| r.lane(k));
             let soft = row_set::<f64x4>(&inputs.soft, k);
-            let one = block_alone(contact, &matrix, &rhs, &accumulated, soft, use_bias);
+            let one = block_alone(contact, &mut free_rows[k], &matrix, &rhs, &accumulated, soft, use_bias);
             for i in 0..MAX_POINTS {
                 lanes[i][k] = one[i];
             }
         }
         deltas = lanes.map(f64x4::new);
     }
-    for (k, contact) in contacts.iter_mut().enumerate().take(GROUP) {
+    for (k, free_rows) in free_rows.iter_mut().enumerate() {
         if !<f64x4 as Lane>::mask_lane(active & solved, k) {
             continue;
         }
-        contact.free_rows = if <f64x4 as Lane>::mask_lane(second_ok, k) {
+        *free_rows = if <f64x4 as Lane>::mask_lane(second_ok, k) {
             row_set::<f64x4>(&second_rows, k)
         } else {
             ALL_ROWS

@@ -437,20 +437,26 @@ impl World {
                         |cs, block, bodies| {
                             let velocities = solve_group(cs, block, bodies, ctx, false)?;
                             if learn && last_sweep {
-                                cs.iter_mut().for_each(|c| c.update_steady_load(ctx.steady_load_time, ctx.h));
+                                block.update_steady_loads(ctx.steady_load_time, ctx.h);
                             }
                             Some(velocities)
                         },
                     );
                 }
+                // The stages below read the contacts themselves, which the groups' state then
+                // goes back to.
                 if learn && ctx.relax_iterations == 0 {
+                    data.give_back_block_states(thread);
                     data.contacts(thread, |c| c.update_steady_load(ctx.steady_load_time, ctx.h));
                 }
                 if restitution {
+                    data.give_back_block_states(thread);
                     let last = substep + 1 == ctx.substeps;
                     data.contacts_with_bodies(thread, |c, a, b| c.apply_restitution(a, b, ctx, last));
                 }
             }
+            // The impulses are kept from the contacts below.
+            data.give_back_block_states(thread);
         });
 
         // Keep the impulses for the next step's warm start (the same contacts in the same order),

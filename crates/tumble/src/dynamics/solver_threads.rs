@@ -256,6 +256,25 @@ impl<'a, S: Send> SolveData<'a, S> {
         thread.sync();
     }
 
+    /// The state the groups hold back into the contacts (`StillBlock::give_back_state`), each
+    /// thread its share, for the stages that read the contacts themselves.
+    pub fn give_back_block_states(&self, thread: SolverThread) {
+        if self.blocks.len == 0 {
+            return;
+        }
+        let mine = thread.share(0..self.blocks.len);
+        // SAFETY: this thread's share of the blocks and of their contacts, until the barrier.
+        let (blocks, contacts) = unsafe {
+            let first = mine.start * GROUP;
+            let contacts = self.contacts.slice(first..(mine.end * GROUP).min(self.contacts.len));
+            (self.blocks.slice(mine), contacts)
+        };
+        for (block, contacts) in blocks.iter_mut().zip(contacts.chunks_mut(GROUP)) {
+            block.give_back_state(contacts);
+        }
+        thread.sync();
+    }
+
     /// As `contacts_with_bodies`, but where there are blocks (`fill_blocks`), the four
     /// constraints of a block that lies within one colour and this thread's share go to `group`
     /// (with the block and their bodies, `[a₀, b₀, a₁, b₁, …]`), which returns the bodies' new
@@ -267,7 +286,7 @@ impl<'a, S: Send> SolveData<'a, S> {
         f: impl Fn(&mut ContactConstraint, &mut SolverBody, &mut SolverBody),
         group: impl Fn(
             &mut [ContactConstraint],
-            &StillBlock,
+            &mut StillBlock,
             &[&SolverBody; 2 * GROUP],
         ) -> Option<GroupVelocities>,
     ) {
@@ -301,10 +320,9 @@ impl<'a, S: Send> SolveData<'a, S> {
                     let (head, rest) = part.split_at_mut(first_block * GROUP - start);
                     let (grouped, tail) = rest.split_at_mut((end_block - first_block) * GROUP);
                     head.iter_mut().for_each(alone_one);
-                    // SAFETY: this thread's blocks (those of its contacts) until the barrier;
-                    // only read.
+                    // SAFETY: this thread's blocks (those of its contacts) until the barrier.
                     let blocks = unsafe { self.blocks.slice(first_block..end_block) };
-                    for (contacts, block) in grouped.chunks_exact_mut(GROUP).zip(blocks.iter()) {
+                    for (contacts, block) in grouped.chunks_exact_mut(GROUP).zip(blocks.iter_mut()) {
                         // SAFETY: the constraints are of one colour, so their dynamic bodies are
                         // distinct and this thread's until the barrier.
                         let took = unsafe {
