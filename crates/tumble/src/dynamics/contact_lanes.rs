@@ -600,19 +600,19 @@ pub(crate) struct StillBlock {
 
 impl Default for StillBlock {
     fn default() -> Self {
-        StillBlock::of(&[], 0)
+        StillBlock::of(&[])
     }
 }
 
 impl StillBlock {
-    /// The block of the manifolds at `first..first + 4` of `contacts` (an empty manifold past the
-    /// end, which no group takes); their state stays with them.
-    pub(crate) fn of(contacts: &[ContactConstraint], first: usize) -> StillBlock {
-        let c = |k: usize| contacts.get(first + k).unwrap_or(&ContactConstraint::EMPTY);
+    /// The block of up to four manifolds (empty ones after them: no group takes such a block);
+    /// their state stays with them.
+    pub(crate) fn of(contacts: &[ContactConstraint]) -> StillBlock {
+        let c = |k: usize| contacts.get(k).unwrap_or(&ContactConstraint::EMPTY);
         let rows = gather_rows(c);
         StillBlock {
             point_counts: std::array::from_fn(|k| c(k).point_count),
-            fits_lanes: (0..GROUP).all(|k| first + k < contacts.len() && c(k).fits_lanes()),
+            fits_lanes: contacts.len() == GROUP && contacts.iter().all(ContactConstraint::fits_lanes),
             state_here: false,
             state: gather_state(&rows.live, |_| &ContactConstraint::EMPTY),
             free_rows: [ALL_ROWS; GROUP],

@@ -239,26 +239,17 @@ impl<'a, S: Send> SolveData<'a, S> {
     /// The blocks of rows of the contacts (`StillBlock`), each thread its share, once the
     /// contacts are prepared; nothing if there are no blocks.
     pub fn fill_blocks(&self, thread: SolverThread) {
-        if self.blocks.len == 0 {
-            return;
-        }
-        let mine = thread.share(0..self.blocks.len);
-        // SAFETY: this thread's share of the blocks, and only read of the contacts, which no
-        // thread writes until the barrier.
-        let (blocks, contacts) = unsafe {
-            let first = mine.start * GROUP;
-            let contacts = self.contacts.slice(first..(mine.end * GROUP).min(self.contacts.len));
-            (self.blocks.slice(mine), contacts)
-        };
-        for (j, block) in blocks.iter_mut().enumerate() {
-            *block = StillBlock::of(contacts, j * GROUP);
-        }
-        thread.sync();
+        self.each_block(thread, |block, contacts| *block = StillBlock::of(contacts));
     }
 
     /// The state the groups hold back into the contacts (`StillBlock::give_back_state`), each
     /// thread its share, for the stages that read the contacts themselves.
     pub fn give_back_block_states(&self, thread: SolverThread) {
+        self.each_block(thread, |block, contacts| block.give_back_state(contacts));
+    }
+
+    /// `f` on every block with its (up to four) contacts, each thread its share.
+    fn each_block(&self, thread: SolverThread, f: impl Fn(&mut StillBlock, &mut [ContactConstraint])) {
         if self.blocks.len == 0 {
             return;
         }
@@ -270,7 +261,7 @@ impl<'a, S: Send> SolveData<'a, S> {
             (self.blocks.slice(mine), contacts)
         };
         for (block, contacts) in blocks.iter_mut().zip(contacts.chunks_mut(GROUP)) {
-            block.give_back_state(contacts);
+            f(block, contacts);
         }
         thread.sync();
     }
