@@ -22,6 +22,8 @@ mod tumbling;
 
 pub use chain::chain;
 pub use convex_pile::convex_pile;
+#[cfg(test)]
+pub(crate) use pyramid::box_centers;
 pub use pyramid::{large_pyramid, pyramid};
 pub use quality::{Metric, Quality};
 pub use ragdolls::{ragdoll_parts, ragdolls, RagdollPart};
