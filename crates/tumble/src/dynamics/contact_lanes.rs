@@ -83,10 +83,30 @@ struct StillRows<L: Lane> {
     impulse_scale: L,
     lever_a: V3<L>,
     lever_b: V3<L>,
+    patch: PatchLanes<L>,
+}
+
+/// What friction at a manifold's centre reads besides its levers (`PatchFriction`), per lane.
+#[derive(Clone, Copy)]
+struct PatchLanes<L: Lane> {
     twist_arms: [L; MAX_POINTS],
     tangent_mass: M3<L>,
     sliding_mass: L,
     friction: L,
+}
+
+impl<L: Lane> PatchLanes<L> {
+    #[inline(always)]
+    fn gather<'a>(live: &[L::Mask; MAX_POINTS], c: impl Fn(usize) -> &'a ContactConstraint) -> Self {
+        PatchLanes {
+            twist_arms: std::array::from_fn(|i| {
+                live_or_zero(live, i, L::from_fn(|k| c(k).friction.twist_arms[i]))
+            }),
+            tangent_mass: M3::from_fn(|k| c(k).friction.tangent_masses.0),
+            sliding_mass: L::from_fn(|k| c(k).friction.tangent_masses.1),
+            friction: L::from_fn(|k| c(k).material.friction),
+        }
+    }
 }
 
 /// What the passes change of a still manifold (and the steady loads, which change between
@@ -133,10 +153,7 @@ fn gather_rows<'a, L: Lane>(c: impl Fn(usize) -> &'a ContactConstraint) -> Still
         impulse_scale: L::from_fn(|k| c(k).softness.impulse_scale),
         lever_a: V3::from_fn(|k| c(k).friction.levers_start.0),
         lever_b: V3::from_fn(|k| c(k).friction.levers_start.1),
-        twist_arms: std::array::from_fn(|i| point(i, L::from_fn(|k| c(k).friction.twist_arms[i]))),
-        tangent_mass: M3::from_fn(|k| c(k).friction.tangent_masses.0),
-        sliding_mass: L::from_fn(|k| c(k).friction.tangent_masses.1),
-        friction: L::from_fn(|k| c(k).material.friction),
+        patch: PatchLanes::gather(&live, &c),
     }
 }
 
@@ -334,10 +351,47 @@ fn solve_pass<L: Lane>(
     use_bias: bool,
     block: impl FnOnce(&BlockLanes<L>, L::Mask) -> [L; MAX_POINTS],
 ) -> L::Mask {
-    let zero = L::splat(0.0);
-    let live = &rows.live;
-    let steady = sum_live(live, |i| m.steady_normal[i]) / rows.count;
     let (separations, normal_velocities) = rows_now(rows, a, b);
+    let normal = NormalRowsNow { separations, normal_velocities };
+    let softness = (rows.bias_rate, rows.mass_scale, rows.impulse_scale);
+    let coupling = || unpack_coupling(&rows.coupling);
+    let (a_before, b_before) = (*a, *b);
+    let Some((active, deltas)) =
+        solve_normal_rows(&rows.live, rows.count, softness, &normal, coupling, m, ctx, use_bias, block)
+    else {
+        return L::mask_splat(false);
+    };
+    apply_normal_impulses(rows, a, b, &deltas);
+    friction_pass(&rows.live, rows.n, &rows.patch, (rows.lever_a, rows.lever_b), m, a, b);
+    keep_inactive(active, a, b, &a_before, &b_before);
+    active
+}
+
+/// The normal rows' separations and normal velocities now, per lane.
+struct NormalRowsNow<L: Lane> {
+    separations: [L; MAX_POINTS],
+    normal_velocities: [L; MAX_POINTS],
+}
+
+/// The normal rows of a pass as one block (`ContactConstraint::solve_normals`): `None` when
+/// every lane is idle, else the lanes that take part and the impulses to apply (the accumulated
+/// ones already updated). `coupling` gives `K` of the levers.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn solve_normal_rows<L: Lane>(
+    live: &[L::Mask; MAX_POINTS],
+    count: L,
+    (bias_rate, soft_mass_scale, soft_impulse_scale): (L, L, L),
+    rows: &NormalRowsNow<L>,
+    coupling: impl FnOnce() -> [[L; MAX_POINTS]; MAX_POINTS],
+    m: &mut StillState<L>,
+    ctx: &StepContext,
+    use_bias: bool,
+    block: impl FnOnce(&BlockLanes<L>, L::Mask) -> [L; MAX_POINTS],
+) -> Option<(L::Mask, [L; MAX_POINTS])> {
+    let zero = L::splat(0.0);
+    let (separations, normal_velocities) = (&rows.separations, &rows.normal_velocities);
+    let steady = sum_live(live, |i| m.steady_normal[i]) / count;
     let (soft_band, inv_h) = (L::splat(SOFT_BAND), L::splat(ctx.inv_h));
     let mut apart = L::mask_splat(true);
     for i in 0..MAX_POINTS {
@@ -346,11 +400,10 @@ fn solve_pass<L: Lane>(
     }
     let active = !(apart & !has_impulse(live, m));
     if !L::any(active) {
-        return active;
+        return None;
     }
-    let (a_before, b_before) = (*a, *b);
 
-    let coupling = unpack_coupling(&rows.coupling);
+    let coupling = coupling();
     let mut inputs = BlockLanes {
         matrix: coupling,
         rhs: [zero; MAX_POINTS],
@@ -362,11 +415,11 @@ fn solve_pass<L: Lane>(
         let s = separations[i];
         let speculative = s.gt(soft_band);
         let (bias, mass_scale, impulse_scale) = if use_bias {
-            let soft_bias = Lane::max(rows.bias_rate * s, L::splat(-ctx.max_contact_push_velocity));
+            let soft_bias = Lane::max(bias_rate * s, L::splat(-ctx.max_contact_push_velocity));
             (
                 L::select(speculative, s * inv_h, soft_bias),
-                L::select(speculative, one, rows.mass_scale),
-                L::select(speculative, zero, rows.impulse_scale),
+                L::select(speculative, one, soft_mass_scale),
+                L::select(speculative, zero, soft_impulse_scale),
             )
         } else {
             (L::select(speculative, s * inv_h, zero), one, zero)
@@ -388,25 +441,24 @@ fn solve_pass<L: Lane>(
         m.normal_impulse[i] = L::select(live[i], impulse, m.normal_impulse[i]);
         m.max_normal[i] = L::select(live[i], Lane::max(m.max_normal[i], applied), m.max_normal[i]);
     }
-    apply_normal_impulses(rows, a, b, &deltas);
-    friction_pass(rows, m, a, b);
-    keep_inactive(active, a, b, &a_before, &b_before);
-    active
+    Some((active, deltas))
 }
 
-/// Friction at the manifold's centre, bounded by its normal impulses (`PatchFriction::solve`,
-/// with the step-start levers of a still pair).
+/// Friction at the manifold's centre, bounded by its normal impulses (`PatchFriction::solve`),
+/// acting at `levers` (a still pair's step-start ones, or a moving pair's now).
 #[inline(always)]
 fn friction_pass<L: Lane>(
-    rows: &StillRows<L>,
+    live: &[L::Mask; MAX_POINTS],
+    n: V3<L>,
+    patch: &PatchLanes<L>,
+    (r_a, r_b): (V3<L>, V3<L>),
     m: &mut StillState<L>,
     a: &mut BodyLanes<L>,
     b: &mut BodyLanes<L>,
 ) {
     let zero = L::splat(0.0);
-    let n = rows.n;
-    let total = sum_live(&rows.live, |i| m.normal_impulse[i]);
-    let twist_limit = rows.friction * sum_live(&rows.live, |i| m.normal_impulse[i] * rows.twist_arms[i]);
+    let total = sum_live(live, |i| m.normal_impulse[i]);
+    let twist_limit = patch.friction * sum_live(live, |i| m.normal_impulse[i] * patch.twist_arms[i]);
     let loaded = twist_limit.gt(zero);
     let old = m.twist_impulse;
     let unloaded = !loaded & old.ne(zero);
@@ -432,17 +484,16 @@ fn friction_pass<L: Lane>(
     b.w = w_b;
     m.twist_impulse = twist;
 
-    let (r_a, r_b) = (rows.lever_a, rows.lever_b);
     let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
     let vt = dv - n.scale(n.dot(dv));
     let old = m.tangent_impulse;
-    let sticking = old - rows.tangent_mass.mul_vec3(vt);
-    let max = rows.friction * total;
+    let sticking = old - patch.tangent_mass.mul_vec3(vt);
+    let max = patch.friction * total;
     let sliding = sticking.length().gt(max);
     let mut new = sticking;
     if L::any(sliding) {
         // Sliding: the isotropic mass, whose fixed point on the rim opposes the slip.
-        let slide = old - vt.scale(rows.sliding_mass);
+        let slide = old - vt.scale(patch.sliding_mass);
         let len = slide.length();
         let slide = V3::select(len.gt(max), slide.scale(max / len), slide);
         new = V3::select(sliding, slide, sticking);
