@@ -357,10 +357,8 @@ impl World {
             .contacts_in_groups
             .unwrap_or(GROUPS_PAY && contacts.len() <= GROUPS_MAX_CONTACTS_PER_THREAD * thread_count);
         let mut blocks = std::mem::take(&mut self.still_blocks);
-        blocks.clear();
-        if in_lanes {
-            blocks.resize_with(contacts.len().div_ceil(GROUP), StillBlock::default);
-        }
+        // Each block is written over at the step's start (`fill_blocks`).
+        blocks.resize_with(if in_lanes { contacts.len().div_ceil(GROUP) } else { 0 }, StillBlock::default);
         let mut serial = (&mut self.joints, &mut trees);
         let lists = (&partition.constrained[..], &partition.unconstrained[..]);
         let data = SolveData::new(&mut bodies, lists, &mut contacts, &mut blocks, &colouring, &mut serial);

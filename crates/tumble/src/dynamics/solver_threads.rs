@@ -239,7 +239,7 @@ impl<'a, S: Send> SolveData<'a, S> {
     /// The blocks of rows of the contacts (`StillBlock`), each thread its share, once the
     /// contacts are prepared; nothing if there are no blocks.
     pub fn fill_blocks(&self, thread: SolverThread) {
-        self.each_block(thread, |block, contacts| *block = StillBlock::of(contacts));
+        self.each_block(thread, |block, contacts| block.fill(contacts));
     }
 
     /// The state the groups hold back into the contacts (`StillBlock::give_back_state`), each
