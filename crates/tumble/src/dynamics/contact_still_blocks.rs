@@ -108,6 +108,24 @@ impl StillBlock {
     }
 }
 
+impl StillBlock {
+    /// The group's bodies in lanes, with the manifolds' state in the block, when all four are
+    /// still; else `None`, with the state back in the manifolds (each then goes alone).
+    #[inline(always)]
+    fn take_group(
+        &mut self,
+        contacts: &mut [ContactConstraint],
+        bodies: &[&SolverBody; 2 * GROUP],
+    ) -> Option<(BodyLanes<f64x4>, BodyLanes<f64x4>)> {
+        if !self.is_still(bodies) {
+            self.give_back_state(contacts);
+            return None;
+        }
+        self.take_state(contacts);
+        Some((BodyLanes::gather(|k| bodies[2 * k]), BodyLanes::gather(|k| bodies[2 * k + 1])))
+    }
+}
+
 /// Stage "warm start" of four still manifolds of one colour at once (`block`: theirs; `bodies`:
 /// each one's a and b), or `None` when they are not all still (then each goes alone, with its
 /// state back).
@@ -116,13 +134,7 @@ pub(crate) fn warm_start_group(
     block: &mut StillBlock,
     bodies: &[&SolverBody; 2 * GROUP],
 ) -> Option<GroupVelocities> {
-    if !block.is_still(bodies) {
-        block.give_back_state(contacts);
-        return None;
-    }
-    block.take_state(contacts);
-    let mut a = BodyLanes::<f64x4>::gather(|k| bodies[2 * k]);
-    let mut b = BodyLanes::<f64x4>::gather(|k| bodies[2 * k + 1]);
+    let (mut a, mut b) = block.take_group(contacts, bodies)?;
     warm_start_pass(&block.rows, &block.state, &mut a, &mut b);
     Some(velocities(&a, &b))
 }
@@ -137,13 +149,7 @@ pub(crate) fn solve_group(
     ctx: &StepContext,
     use_bias: bool,
 ) -> Option<GroupVelocities> {
-    if !block.is_still(bodies) {
-        block.give_back_state(contacts);
-        return None;
-    }
-    block.take_state(contacts);
-    let mut a = BodyLanes::<f64x4>::gather(|k| bodies[2 * k]);
-    let mut b = BodyLanes::<f64x4>::gather(|k| bodies[2 * k + 1]);
+    let (mut a, mut b) = block.take_group(contacts, bodies)?;
     let StillBlock { rows, point_counts, state, free_rows, .. } = block;
     let before = *state;
     let active = solve_pass(rows, state, &mut a, &mut b, ctx, use_bias, |inputs, active| {
