@@ -6,7 +6,7 @@
 //! tumble run SCENE [--out FILE.csv] [--every N] [--duration S] [--dt S] [--profile] [--threads N]
 //!                  [--checkpoint FILE [--checkpoint-every N]]
 //! tumble run --resume FILE    carry on a killed run from its checkpoint
-//! tumble bench NAME [--threads N] [--steps N] [--runs N] [--size N] [--substeps N] [--json]
+//! tumble bench NAME [--threads N] [--steps N] [--runs N] [--size N] [--substeps N] [--json | --profile]
 //! tumble mass MESH [--density D]      mass properties of an OBJ/STL as JSON
 //! tumble view SCENE.toml | REC.csv --scene SCENE.toml [-o out.html]   a page that plays it in 3D
 //! tumble export SCENE.toml | REC.csv --scene SCENE.toml [-o out.glb]  glTF 2.0 animation
@@ -120,6 +120,10 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+        /// Instead of timing runs, make one run with these settings and print the wall time of
+        /// each step phase (as `tumble run SCENE --profile`).
+        #[arg(long, conflicts_with_all = ["runs", "json"])]
+        profile: bool,
         /// Write the scene (bodies, shapes, joints, settings) as JSON to FILE and exit, for the
         /// peer engines in bench/ to build the same scene.
         #[arg(long, value_name = "FILE.json")]
@@ -248,17 +252,21 @@ fn main() -> ExitCode {
             substeps,
             solver,
             json,
-            export: Some(path),
+            profile,
+            export,
         }) => {
-            let _ = (threads, steps, runs, substeps, solver, json);
-            bench::build_scene(&scene, size).and_then(|s| scene_export::export(&s)).and_then(|text| {
-                std::fs::write(&path, text)
-                    .map(|()| format!("wrote {}\n", path.display()))
-                    .map_err(|e| format!("cannot write {}: {e}", path.display()))
-            })
-        }
-        Some(Command::Bench { scene, threads, steps, runs, size, substeps, solver, json, export: None }) => {
-            bench::bench(&scene, &bench::BenchOptions { threads, steps, runs, size, substeps, solver, json })
+            let options = bench::BenchOptions { threads, steps, runs, size, substeps, solver, json };
+            match export {
+                Some(path) => {
+                    bench::build_scene(&scene, size).and_then(|s| scene_export::export(&s)).and_then(|text| {
+                        std::fs::write(&path, text)
+                            .map(|()| format!("wrote {}\n", path.display()))
+                            .map_err(|e| format!("cannot write {}: {e}", path.display()))
+                    })
+                }
+                None if profile => bench::profile(&scene, &options),
+                None => bench::bench(&scene, &options),
+            }
         }
         Some(Command::Mass { mesh, density }) => mass::print_mass(&mesh, density),
         Some(Command::View { input, out, fps }) => view::view(&input.source(Some(fps)), out),

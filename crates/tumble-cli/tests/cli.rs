@@ -199,3 +199,39 @@ fn run_reports_contacts_and_sleeping_bodies() {
         bodies.split(", ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
     assert!(sleeping >= 3, "{bodies}");
 }
+
+/// `tumble bench SCENE --profile` makes one run with the given settings and prints the phases,
+/// whose shares add up to the step; `--profile` with `--json` is refused.
+#[test]
+fn bench_profile_runs_the_given_settings_and_prints_the_phases() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = tumble(
+        &["bench", "pyramid", "--size", "4", "--steps", "7", "--substeps", "3", "--profile"],
+        dir.path(),
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("substeps 3"), "{stdout}");
+    assert!(stdout.contains("7 steps,"), "{stdout}");
+    let share = |label: &str| -> f64 {
+        let line =
+            stdout.lines().find(|l| l.starts_with(label)).unwrap_or_else(|| panic!("no {label}:\n{stdout}"));
+        line.split_whitespace().last().unwrap().trim_end_matches('%').parse().unwrap()
+    };
+    let phases = [
+        "proxies",
+        "broad phase",
+        "narrow phase",
+        "islands/wake",
+        "solve",
+        "continuous",
+        "finalize proxies",
+        "sleep",
+        "other",
+    ];
+    let sum: f64 = phases.iter().map(|p| share(p)).sum();
+    assert!((sum - 100.0).abs() < 0.1 * phases.len() as f64, "shares add to {sum}%:\n{stdout}");
+    assert_eq!(share("step"), 100.0);
+    let refused = tumble(&["bench", "pyramid", "--profile", "--json"], dir.path());
+    assert!(!refused.status.success());
+}

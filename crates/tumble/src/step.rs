@@ -77,8 +77,12 @@ impl World {
         self.profile.lap(Phase::Continuous, &mut clock);
 
         // Move the proxies of the bodies that moved, so queries between steps see the current
-        // poses (query.rs); the next step's broad phase then finds them already in place.
-        self.contact_manager.update_proxies(&self.bodies, dt);
+        // poses (query.rs); the next step's broad phase then finds them already in place. The
+        // solver's write-back planned the moves (collision/contact_manager.rs).
+        let plans = self.written_back.iter().map(|written| written.proxies);
+        #[cfg(test)]
+        let plans = plans.take(if self.plain_proxy_update { 0 } else { usize::MAX });
+        self.contact_manager.move_proxies_as_planned(&self.bodies, plans, dt);
         self.proxies_in_place_for = Some(dt);
         self.profile.lap(Phase::Finalize, &mut clock);
 

@@ -74,6 +74,15 @@ pub struct World {
     /// Per body slot, what the solver's serial stages ask of the body (kept with `solver_bodies`).
     #[serde(skip)]
     pub(crate) solver_body_flags: Vec<crate::dynamics::solver::SlotFlags>,
+    /// Per body slot, what the solver's write-back found (non-finite state, the plan for the
+    /// body's proxies), read by the step's finalize stage.
+    #[serde(skip)]
+    pub(crate) written_back: Vec<crate::dynamics::solver::WrittenBack>,
+    /// Tests only: the finalize stage moves the proxies by its own walk over the bodies, not
+    /// by the write-back's plans (what the plans are checked against).
+    #[cfg(test)]
+    #[serde(skip)]
+    pub(crate) plain_proxy_update: bool,
     /// Broad phase, contacts and their manifolds.
     pub(crate) contact_manager: ContactManager,
     /// The solver's contact rows, kept between steps to reuse the allocation.
@@ -216,6 +225,9 @@ impl World {
             sleep_settings: def.sleep,
             solver_bodies: Vec::new(),
             solver_body_flags: Vec::new(),
+            written_back: Vec::new(),
+            #[cfg(test)]
+            plain_proxy_update: false,
             contact_manager: ContactManager::default(),
             contact_constraints: Vec::new(),
             contacts_in_groups: None,

@@ -121,6 +121,27 @@ impl BroadPhase {
         moved
     }
 
+    /// Whether [`BroadPhase::move_proxy`] would re-insert the proxy (see
+    /// [`DynamicTree::needs_move`]); reads the proxy's own fat box only.
+    pub fn needs_move(&self, update: &ProxyUpdate) -> bool {
+        self.trees[update.key.kind() as usize].needs_move(
+            update.key.proxy_id(),
+            &update.aabb,
+            update.displacement,
+        )
+    }
+
+    /// Re-inserts a proxy that [`BroadPhase::needs_move`] with its new box: the second half of
+    /// [`BroadPhase::move_proxy`].
+    pub fn reinsert(&mut self, update: &ProxyUpdate) {
+        self.trees[update.key.kind() as usize].reinsert(
+            update.key.proxy_id(),
+            &update.aabb,
+            update.displacement,
+        );
+        self.move_buffer.push(update.key);
+    }
+
     /// Applies a batch of moves in the given order; returns how many proxies were re-inserted.
     pub fn update(&mut self, moves: &[ProxyUpdate]) -> usize {
         moves.iter().filter(|m| self.move_proxy(m.key, m.aabb, m.displacement)).count()

@@ -147,6 +147,38 @@ impl ContactManager {
         }
     }
 
+    /// Moves the proxies of awake, non-static bodies as the solver's write-back planned them
+    /// (`plans` in slot order, one per slot, see [`ProxyPlan`]): the same tree operations in the
+    /// same order as [`ContactManager::update_proxies`], hence the same tree, but the boxes and
+    /// the fat-box tests were worked out beside each body's write-back, on the threads and while
+    /// the body was in cache. Here, on one thread, only the re-insertions are left, and the
+    /// bodies planned for later. (Without plans for every slot, as after a body was added, it
+    /// is `update_proxies`.)
+    pub fn move_proxies_as_planned(
+        &mut self,
+        bodies: &SlotPool<Body>,
+        plans: impl ExactSizeIterator<Item = ProxyPlan>,
+        dt: f64,
+    ) {
+        if plans.len() != bodies.capacity_index() {
+            self.update_proxies(bodies, dt);
+            return;
+        }
+        for (slot, plan) in plans.enumerate() {
+            match plan {
+                ProxyPlan::Stay => {}
+                ProxyPlan::Move(update) => self.broad_phase.reinsert(&update),
+                ProxyPlan::Later => {
+                    if let Some(body) = bodies.iter_slot(slot) {
+                        if body.kind != BodyKind::Static && body.is_awake() {
+                            self.move_body_proxies(body, dt);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     /// Moves one body's proxies to its current pose (any kind: a static body moved by the user
     /// too), fat boxes stretched by its velocity times `dt`.
     pub fn move_body_proxies(&mut self, body: &Body, dt: f64) {
@@ -278,6 +310,36 @@ impl ContactManager {
     }
 }
 
+/// What a body's proxies need at the end of the step, as the solver's write-back found it
+/// ([`plan_proxies`]); carried out by [`ContactManager::move_proxies_as_planned`].
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) enum ProxyPlan {
+    /// Nothing: no proxy, a static or sleeping body, or a fat box that still holds.
+    #[default]
+    Stay,
+    /// Its one proxy left its fat box: re-insert it with this box.
+    Move(ProxyUpdate),
+    /// Left to the finalize stage: a body of several leaves (compound), a bullet (the continuous
+    /// stage may still move it back), or one whose state came back non-finite.
+    Later,
+}
+
+/// The plan for an awake body's proxies at its pose just written back by the solver. Reads the
+/// body and its own fat box only, so bodies are planned on any thread in any order.
+pub(crate) fn plan_proxies(broad_phase: &BroadPhase, body: &Body, dt: f64) -> ProxyPlan {
+    if body.kind == BodyKind::Static || body.proxies.is_empty() {
+        return ProxyPlan::Stay;
+    }
+    if body.bullet || body.proxies.len() != 1 {
+        return ProxyPlan::Later;
+    }
+    match proxy_updates(body, dt, broad_phase.margin()).next() {
+        Some(update) if broad_phase.needs_move(&update) => ProxyPlan::Move(update),
+        Some(_) => ProxyPlan::Stay,
+        None => ProxyPlan::Later,
+    }
+}
+
 /// A body's proxies with their boxes at its current pose and its displacement over `dt`.
 ///
 /// The box is the tight one, except for a body spinning fast enough that its tight box would
@@ -371,4 +433,125 @@ fn update_manifold(contact: &mut Contact, a: &Body, b: &Body, dt: f64) {
         _ => None,
     };
     contact.set_manifold(manifold);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::BodyDef;
+    use crate::math::DQuat;
+    use crate::shape::{Compound, CompoundChild, Cuboid, Plane, Sphere};
+    use crate::world::World;
+
+    /// Balls falling fast onto a floor (re-inserted most steps), tumbling compounds (several
+    /// leaves: planned for later), bullets (the continuous stage moves them back after the
+    /// write-back) and a kinematic box sweeping through.
+    fn mixed_world(threads: usize) -> World {
+        let mut world = World::new(Default::default()).expect("default settings");
+        world.set_threads(threads).expect("threads");
+        world
+            .add_body(BodyDef {
+                kind: BodyKind::Static,
+                shape: Some(Shape::Plane(Plane::new(DVec3::Z, 0.0).expect("plane"))),
+                ..Default::default()
+            })
+            .expect("floor");
+        let ball = || Some(Shape::Sphere(Sphere::new(0.1).expect("ball")));
+        for k in 0..300 {
+            let (i, j, l) = ((k % 10) as f64, ((k / 10) % 10) as f64, (k / 100) as f64);
+            world
+                .add_body(BodyDef {
+                    shape: ball(),
+                    position: DVec3::new(0.3 * i, 0.3 * j, 1.0 + 0.3 * l),
+                    linear_velocity: DVec3::new(0.0, 0.0, -8.0),
+                    ..Default::default()
+                })
+                .expect("ball");
+        }
+        let child = |x: f64| CompoundChild {
+            pose: Transform::new(DVec3::new(x, 0.0, 0.0), DQuat::IDENTITY),
+            shape: Shape::Cuboid(Cuboid::new(DVec3::splat(0.1)).expect("cube")),
+        };
+        for k in 0..4 {
+            world
+                .add_body(BodyDef {
+                    shape: Some(Shape::Compound(
+                        Compound::new(vec![child(-0.2), child(0.2)]).expect("compound"),
+                    )),
+                    position: DVec3::new(-1.0, 0.6 * k as f64, 0.5),
+                    angular_velocity: DVec3::new(3.0, 20.0, 1.0),
+                    ..Default::default()
+                })
+                .expect("compound");
+        }
+        // Bullets: spinning sticks thrown at a 1 cm wall, whose ends sweep past it within a
+        // step (tests/continuous.rs), so the continuous stage moves them back.
+        world
+            .add_body(BodyDef {
+                kind: BodyKind::Static,
+                shape: Some(Shape::Cuboid(Cuboid::new(DVec3::new(0.005, 5.0, 5.0)).expect("wall"))),
+                position: DVec3::new(8.0, 0.0, 5.0),
+                ..Default::default()
+            })
+            .expect("wall");
+        for k in 0..10 {
+            let phase = 0.07 * k as f64;
+            world
+                .add_body(BodyDef {
+                    shape: Some(Shape::Cuboid(Cuboid::new(DVec3::new(0.5, 0.01, 0.01)).expect("stick"))),
+                    position: DVec3::new(4.0 - phase, -4.0 + 0.8 * k as f64, 6.0),
+                    orientation: DQuat::from_rotation_z(3.0 * phase),
+                    linear_velocity: DVec3::new(50.0, 0.0, 0.0),
+                    angular_velocity: DVec3::new(0.0, 0.0, 90.0),
+                    bullet: true,
+                    ..Default::default()
+                })
+                .expect("bullet");
+        }
+        world
+            .add_body(BodyDef {
+                kind: BodyKind::Kinematic,
+                shape: Some(Shape::Cuboid(Cuboid::new(DVec3::splat(0.3)).expect("box"))),
+                position: DVec3::new(-2.0, 1.5, 0.4),
+                linear_velocity: DVec3::new(5.0, 0.0, 0.0),
+                ..Default::default()
+            })
+            .expect("kinematic");
+        world
+    }
+
+    /// The plans made beside the write-back move the proxies as the plain walk of the finalize
+    /// stage ([`ContactManager::update_proxies`]) does: the same tree, node for node, after every
+    /// step, on one thread and on two. And every awake body's fat boxes hold its shape where it
+    /// ended the step.
+    #[test]
+    fn planned_proxy_moves_build_the_tree_the_plain_update_builds() {
+        let dt = 1.0 / 60.0;
+        for threads in [1, 2] {
+            let mut world = mixed_world(threads);
+            let mut plain = mixed_world(threads);
+            plain.plain_proxy_update = true;
+            let mut reinserted = 0;
+            for step in 0..40 {
+                world.step(dt).expect("step");
+                plain.step(dt).expect("step");
+                let tree = |w: &World| format!("{:?}", w.contact_manager.broad_phase);
+                assert_eq!(tree(&world), tree(&plain), "{threads} threads, step {step}");
+                reinserted +=
+                    world.written_back.iter().filter(|w| matches!(w.proxies, ProxyPlan::Move(_))).count();
+                for (_, body) in
+                    world.bodies.iter().filter(|(_, b)| b.kind != BodyKind::Static && b.is_awake())
+                {
+                    for update in proxy_updates(body, dt, world.contact_manager.broad_phase.margin()) {
+                        let fat = world.contact_manager.broad_phase.fat_aabb(update.key);
+                        assert!(
+                            fat.contains(&update.aabb),
+                            "{threads} threads, step {step}: a fat box lost its shape"
+                        );
+                    }
+                }
+            }
+            assert!(reinserted > 300, "{threads} threads: only {reinserted} planned re-insertions");
+        }
+    }
 }

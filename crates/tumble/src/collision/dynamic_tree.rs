@@ -107,20 +107,41 @@ impl DynamicTree {
     /// and then stopped). The new fat box is swept by twice the displacement, so a body moving
     /// steadily is re-inserted every other update. Returns whether the proxy was re-inserted.
     pub fn move_proxy(&mut self, id: ProxyId, aabb: Aabb, displacement: DVec3) -> bool {
+        let moves = self.needs_move(id, &aabb, displacement);
+        if moves {
+            self.reinsert(id, &aabb, displacement);
+        }
+        moves
+    }
+
+    /// Whether [`DynamicTree::move_proxy`] would re-insert the proxy: a question of its own
+    /// fat box alone, so it can be asked for many proxies at once on several threads.
+    pub fn needs_move(&self, id: ProxyId, aabb: &Aabb, displacement: DVec3) -> bool {
         self.check_leaf(id);
         debug_assert!(aabb.is_valid(), "move_proxy: invalid box {aabb:?}");
-        let fat = aabb.fattened(self.margin).swept(2.0 * displacement);
         let old = self.nodes[id.0 as usize].aabb;
         if old.contains(&aabb.swept(displacement)) {
-            let huge = fat.fattened(4.0 * self.margin);
+            let huge = self.fat_box(aabb, displacement).fattened(4.0 * self.margin);
             if huge.contains(&old) {
                 return false;
             }
         }
+        true
+    }
+
+    /// Re-inserts the proxy with the fat box of `aabb` and `displacement` (the second half of
+    /// [`DynamicTree::move_proxy`], for a proxy that [`DynamicTree::needs_move`]).
+    pub fn reinsert(&mut self, id: ProxyId, aabb: &Aabb, displacement: DVec3) {
+        self.check_leaf(id);
+        let fat = self.fat_box(aabb, displacement);
         self.remove_leaf(id.0);
         self.nodes[id.0 as usize].aabb = fat;
         self.insert_leaf(id.0);
-        true
+    }
+
+    /// The fat box of a proxy with tight box `aabb` headed `displacement` away.
+    fn fat_box(&self, aabb: &Aabb, displacement: DVec3) -> Aabb {
+        aabb.fattened(self.margin).swept(2.0 * displacement)
     }
 
     /// The fat box stored for a proxy.
