@@ -50,7 +50,7 @@ impl World {
         );
         jointed.sort_unstable();
         let joined = |a: BodyId, b: BodyId| jointed.binary_search(&(a.min(b), a.max(b))).is_ok();
-        self.contact_manager.find_new_contacts(&self.bodies, joined);
+        self.contact_manager.find_new_contacts(&self.bodies, joined, threads);
         self.scratch.jointed_pairs = jointed;
         self.profile.lap(Phase::BroadPhase, &mut clock);
         self.contact_manager.update_contacts(&self.bodies, dt, threads);

@@ -13,6 +13,7 @@ use super::aabb::Aabb;
 use super::dynamic_tree::{DynamicTree, ProxyId};
 use super::ray::Ray;
 use crate::math::DVec3;
+use crate::step_threads::{for_each_chunk_of, StepThreads};
 
 /// Which tree a proxy lives in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
@@ -72,7 +73,18 @@ pub struct BroadPhase {
     /// Proxies created or re-inserted since the last `find_new_pairs` (may hold duplicates and
     /// keys destroyed since; both are filtered when the buffer is used).
     move_buffer: Vec<ProxyKey>,
+    /// The threaded pair search's pairs, one list per chunk of moved proxies (kept to reuse the
+    /// allocations).
+    #[serde(skip)]
+    chunk_pairs: Vec<Vec<(ProxyKey, ProxyKey)>>,
 }
+
+/// Moved proxies per task of the threaded pair search: fixed, so the split follows the scene.
+const PAIR_SEARCH_CHUNK: usize = 64;
+
+/// Moved proxies below which the pair search stays on the calling thread (a few queries cost
+/// less than handing them out).
+const PAIR_SEARCH_MIN_SHARED: usize = 4 * PAIR_SEARCH_CHUNK;
 
 impl Default for BroadPhase {
     fn default() -> Self {
@@ -83,7 +95,11 @@ impl Default for BroadPhase {
 impl BroadPhase {
     /// An empty broad phase whose fat boxes are grown by `margin`.
     pub fn new(margin: f64) -> Self {
-        Self { trees: [DynamicTree::new(margin), DynamicTree::new(margin)], move_buffer: Vec::new() }
+        Self {
+            trees: [DynamicTree::new(margin), DynamicTree::new(margin)],
+            move_buffer: Vec::new(),
+            chunk_pairs: Vec::new(),
+        }
     }
 
     /// The fat-box margin, m.
@@ -184,19 +200,44 @@ impl BroadPhase {
     /// [`BroadPhase::find_new_pairs`] into a caller's buffer (cleared first), so a caller that
     /// keeps the buffer allocates nothing once it is large enough.
     pub fn find_new_pairs_into(&mut self, pairs: &mut Vec<(ProxyKey, ProxyKey)>) {
+        self.find_new_pairs_on(pairs, None);
+    }
+
+    /// [`BroadPhase::find_new_pairs_into`], with the queries on `threads` when enough proxies
+    /// moved: in chunks of [`PAIR_SEARCH_CHUNK`] moved proxies, each into its own list, joined
+    /// and sorted afterwards, so the pairs are the same whatever the split. (The queries only
+    /// read the trees; in a rain of 2,000 balls they were most of the broad phase's 0.8 ms.)
+    pub(crate) fn find_new_pairs_on(
+        &mut self,
+        pairs: &mut Vec<(ProxyKey, ProxyKey)>,
+        threads: Option<&StepThreads>,
+    ) {
         pairs.clear();
         let mut moved = std::mem::take(&mut self.move_buffer);
         moved.sort_unstable();
         moved.dedup();
-        for &key in &moved {
-            let tree = &self.trees[key.kind() as usize];
-            if !tree.contains_proxy(key.proxy_id()) {
-                continue; // destroyed after it moved
+        match threads.filter(|_| moved.len() >= PAIR_SEARCH_MIN_SHARED) {
+            None => {
+                for &key in &moved {
+                    self.collect_new_pairs(key, pairs);
+                }
             }
-            let fat = tree.fat_aabb(key.proxy_id());
-            self.collect_overlaps(key, &fat, ProxyKind::Dynamic, |other| other != key, pairs);
-            if key.kind() == ProxyKind::Dynamic {
-                self.collect_overlaps(key, &fat, ProxyKind::Static, |_| true, pairs);
+            Some(threads) => {
+                let mut chunk_pairs = std::mem::take(&mut self.chunk_pairs);
+                chunk_pairs.resize_with(moved.len().div_ceil(PAIR_SEARCH_CHUNK), Vec::new);
+                let (this, moved) = (&*self, &moved);
+                for_each_chunk_of(Some(threads), &mut chunk_pairs, 1, |chunk, found| {
+                    let found = &mut found[0];
+                    found.clear();
+                    let start = chunk * PAIR_SEARCH_CHUNK;
+                    for &key in &moved[start..(start + PAIR_SEARCH_CHUNK).min(moved.len())] {
+                        this.collect_new_pairs(key, found);
+                    }
+                });
+                for found in &chunk_pairs {
+                    pairs.extend_from_slice(found);
+                }
+                self.chunk_pairs = chunk_pairs;
             }
         }
         // A pair of two moved proxies is found from both ends.
@@ -204,6 +245,19 @@ impl BroadPhase {
         pairs.dedup();
         moved.clear();
         self.move_buffer = moved; // keep the allocation
+    }
+
+    /// Pushes the candidate pairs of one moved proxy (none if it was destroyed after it moved).
+    fn collect_new_pairs(&self, key: ProxyKey, pairs: &mut Vec<(ProxyKey, ProxyKey)>) {
+        let tree = &self.trees[key.kind() as usize];
+        if !tree.contains_proxy(key.proxy_id()) {
+            return;
+        }
+        let fat = tree.fat_aabb(key.proxy_id());
+        self.collect_overlaps(key, &fat, ProxyKind::Dynamic, |other| other != key, pairs);
+        if key.kind() == ProxyKind::Dynamic {
+            self.collect_overlaps(key, &fat, ProxyKind::Static, |_| true, pairs);
+        }
     }
 
     /// Pushes `(min, max)` of `key` and every proxy of `kind` overlapping `fat` that passes `keep`.
@@ -275,6 +329,40 @@ mod tests {
         let k = ProxyKey::new(ProxyKind::Dynamic, ProxyId(5));
         assert_eq!((k.kind(), k.proxy_id(), k.raw()), (ProxyKind::Dynamic, ProxyId(5), 11));
         assert_eq!(ProxyKey::new(ProxyKind::Static, ProxyId(5)).kind(), ProxyKind::Static);
+    }
+
+    /// The threaded pair search finds the pairs the search on one thread finds, in the same
+    /// order: 2,000 boxes in a loose cloud over a few static ones, all moved at once, then a
+    /// few hundred moved again.
+    #[test]
+    fn pairs_found_on_threads_are_the_pairs_found_on_one() {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().expect("pool");
+        let threads = StepThreads::begin(&pool).expect("three threads");
+        let mut bp = BroadPhase::new(0.1);
+        let at = |k: usize, shift: f64| {
+            let (i, j, l) = ((k % 20) as f64, ((k / 20) % 10) as f64, (k / 200) as f64);
+            cube(DVec3::new(0.9 * i + shift, 0.9 * j, 0.9 * l + 0.3 * (k % 3) as f64))
+        };
+        for k in 0..5 {
+            bp.create_proxy(cube(DVec3::new(4.0 * k as f64, 4.0, 0.0)), ProxyKind::Static, k as u64);
+        }
+        let keys: Vec<ProxyKey> =
+            (0..2000).map(|k| bp.create_proxy(at(k, 0.0), ProxyKind::Dynamic, k as u64)).collect();
+        let mut twin = bp.clone();
+        for round in 0..2 {
+            let (mut alone, mut shared) = (Vec::new(), Vec::new());
+            bp.find_new_pairs_on(&mut alone, None);
+            twin.find_new_pairs_on(&mut shared, Some(&threads));
+            assert!(alone.len() > 2000, "round {round}: only {} pairs", alone.len());
+            assert_eq!(alone, shared, "round {round}");
+            for (k, &key) in keys.iter().enumerate().filter(|(k, _)| k % 7 == round) {
+                let update = ProxyUpdate { key, aabb: at(k, 0.45), displacement: DVec3::ZERO };
+                assert_eq!(
+                    bp.move_proxy(key, update.aabb, update.displacement),
+                    twin.move_proxy(key, update.aabb, update.displacement)
+                );
+            }
+        }
     }
 
     #[test]

@@ -188,9 +188,15 @@ impl ContactManager {
     }
 
     /// Creates contacts for new candidate pairs that may collide.
-    pub fn find_new_contacts(&mut self, bodies: &SlotPool<Body>, joined: impl Fn(BodyId, BodyId) -> bool) {
+    /// The broad phase's queries run on `threads` when many proxies moved.
+    pub fn find_new_contacts(
+        &mut self,
+        bodies: &SlotPool<Body>,
+        joined: impl Fn(BodyId, BodyId) -> bool,
+        threads: Option<&StepThreads>,
+    ) {
         let mut new_pairs = std::mem::take(&mut self.new_pairs);
-        self.broad_phase.find_new_pairs_into(&mut new_pairs);
+        self.broad_phase.find_new_pairs_on(&mut new_pairs, threads);
         // Only the pairs without a contact yet, and room for them at once (a first step that
         // makes thousands of contacts then moves them once, not at every doubling).
         new_pairs.retain(|&pair| !self.contacts.contains(pair));
