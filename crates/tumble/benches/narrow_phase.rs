@@ -1,5 +1,5 @@
 //! Narrow-phase cost per pair: a box resting on a box (SAT + clipping, 4 points, warm cache), and
-//! two 20-point random hulls touching (SAT over hull faces and Gauss-map edge pairs).
+//! two 20-point random hulls touching in 64 poses (SAT over hull faces and Gauss-map edge pairs).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use tumble::collision::{collide, PairCache};
@@ -29,14 +29,34 @@ fn bench(c: &mut Criterion) {
     });
 
     let (ha, hb) = (Shape::ConvexHull(random_hull(7)), Shape::ConvexHull(random_hull(11)));
-    // Place B just touching A along X: find the gap with a far-apart query, then close it.
-    let q = DQuat::from_rotation_y(0.4);
-    let mut pose_b = Transform::new(DVec3::new(2.0, 0.1, 0.05), q);
-    let far = collide(&ha, &Transform::IDENTITY, &hb, &pose_b, 10.0, &mut PairCache::default()).unwrap();
-    pose_b.translation -= far.normal_world * (far.min_separation() + 0.005);
-    let mut cache = PairCache::default();
-    c.bench_function("hull_hull_touching", |b| {
-        b.iter(|| collide(black_box(&ha), &Transform::IDENTITY, black_box(&hb), &pose_b, 0.02, &mut cache))
+    // B just touching A from 64 directions, each turned its own way: one pose asked again and
+    // again would let the processor learn every branch of the test by heart, which a scene's
+    // thousands of different pairs never allow.
+    let touching: Vec<(Transform, PairCache)> = (0..64)
+        .map(|k| {
+            let t = k as f64;
+            let dir = DVec3::new((0.7 * t).cos(), (0.7 * t).sin(), (1.3 * t).sin()).normalize();
+            let q = DQuat::from_axis_angle(DVec3::new(t.sin(), 1.0, (2.0 * t).cos()).normalize(), 0.4 * t);
+            // Find the gap with a far-apart query, then close it.
+            let mut pose_b = Transform::new(2.0 * dir, q);
+            let far = collide(&ha, &Transform::IDENTITY, &hb, &pose_b, 10.0, &mut PairCache::default())
+                .expect("within 10 m");
+            pose_b.translation -= far.normal_world * (far.min_separation() + 0.005);
+            (pose_b, PairCache::default())
+        })
+        .collect();
+    let mut touching = touching;
+    c.bench_function("hull_hull_touching_64_poses", |b| {
+        b.iter(|| {
+            touching
+                .iter_mut()
+                .map(|(pose_b, cache)| {
+                    let m =
+                        collide(black_box(&ha), &Transform::IDENTITY, black_box(&hb), pose_b, 0.02, cache);
+                    m.map_or(0, |m| m.len())
+                })
+                .sum::<usize>()
+        })
     });
 }
 
