@@ -65,7 +65,10 @@ const KEEP_REL_TOLERANCE: f64 = 0.05;
 /// Edges closer than this sine of an angle to parallel give no axis (their faces' normals do).
 const PARALLEL_SINE: f64 = 0.005;
 
-/// B seen from A's frame: B's vertices and face normals mapped once, then reused by every query.
+/// B seen from A's frame: B's vertices and face normals mapped once (`map_all`), then reused by
+/// every query. Before that, each is mapped when asked for: the early outs of
+/// `collide_polytopes` (last step's axis still separates) read one face and a vertex or two, and
+/// most pairs end there.
 struct Frames<'p, 'h> {
     a: &'p Polytope<'h>,
     b: &'p Polytope<'h>,
@@ -76,14 +79,46 @@ struct Frames<'p, 'h> {
 
 impl<'p, 'h> Frames<'p, 'h> {
     fn new(a: &'p Polytope<'h>, pose_a: &Transform, b: &'p Polytope<'h>, pose_b: &Transform) -> Self {
+        let mut frames = Frames::unmapped(a, pose_a, b, pose_b);
+        frames.map_all();
+        frames
+    }
+
+    /// The frames with nothing of B mapped yet.
+    fn unmapped(a: &'p Polytope<'h>, pose_a: &Transform, b: &'p Polytope<'h>, pose_b: &Transform) -> Self {
         let b_in_a = pose_a.inverse().mul_transform(pose_b);
-        let verts_b = (0..b.vertex_count()).map(|i| b_in_a.transform_point(b.vertex(i))).collect();
-        let normals_b = (0..b.face_count()).map(|f| b_in_a.rotation * b.face_normal(f)).collect();
-        Frames { a, b, b_in_a, verts_b, normals_b }
+        Frames { a, b, b_in_a, verts_b: SmallVec::new(), normals_b: SmallVec::new() }
+    }
+
+    /// Maps all of B's vertices and face normals (once; the queries read them from the lists).
+    fn map_all(&mut self) {
+        if self.verts_b.is_empty() {
+            let (b, b_in_a) = (self.b, self.b_in_a);
+            self.verts_b = (0..b.vertex_count()).map(|i| b_in_a.transform_point(b.vertex(i))).collect();
+            self.normals_b = (0..b.face_count()).map(|f| b_in_a.rotation * b.face_normal(f)).collect();
+        }
+    }
+
+    /// B's vertex `i` in A's frame: from the list once mapped, else mapped now (the same bits).
+    #[inline]
+    fn vertex_b(&self, i: usize) -> DVec3 {
+        match self.verts_b.get(i) {
+            Some(&v) => v,
+            None => self.b_in_a.transform_point(self.b.vertex(i)),
+        }
+    }
+
+    /// B's face normal `f` in A's frame, as `vertex_b`.
+    #[inline]
+    fn normal_b(&self, f: usize) -> DVec3 {
+        match self.normals_b.get(f) {
+            Some(&n) => n,
+            None => self.b_in_a.rotation * self.b.face_normal(f),
+        }
     }
 
     fn support_b(&self, dir: DVec3) -> DVec3 {
-        self.verts_b[self.b.support_index(self.b_in_a.rotation.inverse() * dir)]
+        self.vertex_b(self.b.support_index(self.b_in_a.rotation.inverse() * dir))
     }
 
     fn face_a(&self, f: usize) -> f64 {
@@ -98,8 +133,8 @@ impl<'p, 'h> Frames<'p, 'h> {
     }
 
     fn face_b(&self, f: usize) -> f64 {
-        let n = self.normals_b[f];
-        let on_face = self.verts_b[self.b.face_vertices(f)[0] as usize];
+        let n = self.normal_b(f);
+        let on_face = self.vertex_b(self.b.face_vertices(f)[0] as usize);
         n.dot(self.a.vertex(self.a.support_index(-n)) - on_face)
     }
 
@@ -111,8 +146,8 @@ impl<'p, 'h> Frames<'p, 'h> {
 
     /// An edge of B: its start and its direction, in A's frame.
     fn edge_b(&self, e: &HullEdge) -> (DVec3, DVec3) {
-        let start = self.verts_b[e.vertices[0] as usize];
-        (start, self.verts_b[e.vertices[1] as usize] - start)
+        let start = self.vertex_b(e.vertices[0] as usize);
+        (start, self.vertex_b(e.vertices[1] as usize) - start)
     }
 
     fn query(&self) -> SatQuery {
@@ -133,6 +168,7 @@ impl<'p, 'h> Frames<'p, 'h> {
     /// `query_within`, listing the edge pairs that pass the first sign test from bit sets of B's
     /// edges (`sets`, at most 128 edges) or testing every pair: the same result either way.
     fn query_with_sets(&self, margin: f64, sets: bool) -> Result<SatQuery, (SatFeature, f64)> {
+        debug_assert_eq!(self.normals_b.len(), self.b.face_count(), "B is mapped (`map_all`)");
         let best = |count: usize, f: &dyn Fn(usize) -> f64| {
             let mut best = (0, f64::NEG_INFINITY);
             for i in 0..count {
@@ -265,7 +301,7 @@ pub fn collide_polytopes(
     margin: f64,
     cache: &mut SatCache,
 ) -> Option<Manifold> {
-    let frames = Frames::new(a, pose_a, b, pose_b);
+    let mut frames = Frames::unmapped(a, pose_a, b, pose_b);
     // Last step's axis, re-measured: if it still separates, nothing else needs testing.
     let cached = match cache.feature {
         SatFeature::FaceA(f) if (f as usize) < a.face_count() => Some(frames.face_a(f as usize)),
@@ -294,6 +330,7 @@ pub fn collide_polytopes(
             }
         }
     }
+    frames.map_all();
     let q = match frames.query_within(margin) {
         Ok(q) => q,
         Err((feature, separation)) => {
