@@ -1,5 +1,6 @@
-//! A steady-state step allocates nothing: a resting pyramid and a pile of ragdolls (sleep off, so
-//! every body, contact and joint is still processed each step) and a swinging chain are stepped
+//! A steady-state step allocates nothing: a resting pyramid, a pile of ragdolls and a pile of
+//! hulls on a terrain mesh (sleep off, so every body, contact and joint is still processed each
+//! step) and a swinging chain are stepped
 //! until their contacts and pairs stop changing, then the heap allocations of further steps are counted by a global allocator
 //! that counts (one per test binary, hence this file of its own).
 
@@ -54,9 +55,12 @@ fn steady_state_steps_do_not_allocate() {
     // The ragdolls go on making and breaking a few contacts for 10 s; the contact store last grows
     // (to its largest number of contacts) after 625 steps.
     let ragdolls = allocations("ragdolls", 4, 900, 100);
+    // Hulls on a triangle-mesh terrain and on each other: the separating-axis test, the mesh's
+    // triangles, GJK and EPA.
+    let convex_pile = allocations("convex_pile", 30, 300, 100);
     assert_eq!(
-        (pyramid, chain, ragdolls),
-        (0, 0, 0),
-        "allocations in 100 steady-state steps of (pyramid, chain, ragdolls)"
+        (pyramid, chain, ragdolls, convex_pile),
+        (0, 0, 0, 0),
+        "allocations in 100 steady-state steps of (pyramid, chain, ragdolls, convex_pile)"
     );
 }

@@ -13,7 +13,10 @@
 //! GJK may stop with a point, segment or triangle when the origin lies on it (touching cores); the
 //! simplex is then "blown up" to a tetrahedron with extra support points first.
 
-use std::collections::HashMap;
+use std::cell::Cell;
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
 
 use super::gjk::{ConvexPair, Simplex, SupportPoint};
 use crate::math::DVec3;
@@ -38,6 +41,16 @@ struct Face {
 }
 
 const MAX_ITERATIONS: usize = 128;
+
+// The polytope's lists, on the stack up to the sizes most calls stay within (a few dozen
+// iterations); beyond, they move to the heap.
+type Vertices = SmallVec<[SupportPoint; 32]>;
+type Horizon = SmallVec<[(usize, usize); 16]>;
+thread_local! {
+    /// The edge map of the last EPA call on this thread, emptied and reused by the next: the map
+    /// keeps its table, so a step allocates nothing for it once the tables have grown.
+    static EDGE_OWNERS: Cell<FxHashMap<(usize, usize), usize>> = Cell::new(FxHashMap::default());
+}
 /// A polytope this large has stopped converging; its nearest face is as good as it gets.
 const MAX_FACES: usize = 1024;
 /// Converged when the support along the nearest face's normal is within this (× scale) of it.
@@ -55,7 +68,9 @@ pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
     if n012.dot(verts[3].w - verts[0].w) > 0.0 {
         verts.swap(1, 2);
     }
-    let mut poly = Polytope::default();
+    let mut edge_owner = EDGE_OWNERS.take();
+    edge_owner.clear();
+    let mut poly = Polytope { edge_owner, ..Default::default() };
     for v in [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]] {
         poly.add_face(&verts, v);
     }
@@ -75,6 +90,7 @@ pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
         best = poly.nearest_face();
     }
     let face = poly.faces[best];
+    EDGE_OWNERS.set(poly.edge_owner);
     let lam = barycentric(face.normal * face.distance, face.v.map(|i| verts[i].w));
     let mut point_a = DVec3::ZERO;
     let mut point_b = DVec3::ZERO;
@@ -86,12 +102,14 @@ pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
 }
 
 /// The polytope's surface: triangles (dead ones kept so indices stay valid) and a map from each
-/// directed edge to the face that owns it, for walking to neighbours.
+/// directed edge to the face that owns it, for walking to neighbours. (Keyed by a pair of small
+/// indices, the map hashes with Fx: the default SipHash, made to resist chosen keys, cost a
+/// sizeable part of each EPA call.)
 #[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Polytope {
-    faces: Vec<Face>,
-    alive: Vec<bool>,
-    edge_owner: HashMap<(usize, usize), usize>,
+    faces: SmallVec<[Face; 64]>,
+    alive: SmallVec<[bool; 64]>,
+    edge_owner: FxHashMap<(usize, usize), usize>,
 }
 
 impl Polytope {
@@ -123,12 +141,12 @@ impl Polytope {
     /// and returns the hole's boundary edges, wound like the removed faces. Faces that `p` is
     /// within `eps` of count as not seeing it: on flat patches (a cylinder's cap) support points
     /// are coplanar, and letting round-off decide would scatter the hole and ruin the polytope.
-    fn carve(&mut self, verts: &[SupportPoint], start: usize, p: DVec3, eps: f64) -> Vec<(usize, usize)> {
+    fn carve(&mut self, verts: &[SupportPoint], start: usize, p: DVec3, eps: f64) -> Horizon {
         let sees = |f: &Face| f.normal.dot(p - verts[f.v[0]].w) > eps;
-        let mut visible = vec![start];
+        let mut visible: SmallVec<[usize; 16]> = SmallVec::from_elem(start, 1);
         self.alive[start] = false;
         let mut k = 0;
-        let mut horizon = Vec::new();
+        let mut horizon = Horizon::new();
         while k < visible.len() {
             let f = self.faces[visible[k]];
             k += 1;
@@ -172,8 +190,8 @@ fn barycentric(p: DVec3, t: [DVec3; 3]) -> [f64; 3] {
 
 /// Grows GJK's simplex to a tetrahedron of non-zero volume that still contains the origin (on its
 /// boundary at worst), using extra support points.
-fn blow_up(pair: &ConvexPair, simplex: &Simplex, tol: f64) -> Option<Vec<SupportPoint>> {
-    let mut verts: Vec<SupportPoint> = Vec::with_capacity(MAX_ITERATIONS + 4);
+fn blow_up(pair: &ConvexPair, simplex: &Simplex, tol: f64) -> Option<Vertices> {
+    let mut verts = Vertices::new();
     for p in simplex.as_slice() {
         if verts.iter().all(|q| (q.w - p.w).length() > tol) {
             verts.push(*p);

@@ -37,6 +37,7 @@ use super::support::{Core, Rounded};
 use super::triangle::{edge_bends, has_sharp_edge, normal_allowed, TriangleSource};
 use crate::math::{DMat3, DVec3, Transform};
 use crate::shape::Shape;
+use smallvec::{smallvec, SmallVec};
 
 /// Candidates whose normal is within this cosine (30°) of the dominant one join the manifold.
 const MERGE_COS: f64 = 0.866;
@@ -50,6 +51,10 @@ const DISTINCT: f64 = 1e-6;
 /// The clip tag of a round cap's true lowest point: below 0x8000 (an original point, named by the
 /// shape's feature alone) and above any cap corner's index.
 const LOWEST_TAG: u16 = 0x7FFF;
+
+/// The candidates of one pair, on the stack up to 32 (a hull across four triangles can clip to
+/// more than 16).
+type Candidates = SmallVec<[Candidate; 32]>;
 
 /// A contact point before reduction, in the mesh's local frame.
 #[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
@@ -73,11 +78,13 @@ pub fn collide_triangles_convex<S: TriangleSource + ?Sized>(
     let rounded = Rounded::of(shape)?;
     let b_in_a = pose_a.inverse().mul_transform(pose_b);
     let query: Aabb = shape_aabb(shape, &b_in_a).fattened(margin);
-    let mut triangles = Vec::new();
+    // On the stack for the usual handful of triangles and candidates (a step over a terrain
+    // then allocates nothing).
+    let mut triangles: SmallVec<[u32; 32]> = SmallVec::new();
     source.query(&query, &mut |t| triangles.push(t));
     let rot = DMat3::from_quat(b_in_a.rotation);
     let frame = Frame { rot, rot_t: rot.transpose() };
-    let mut candidates = Vec::new();
+    let mut candidates = Candidates::new();
     for &t in &triangles {
         triangle_contact(source, t, &rounded, &b_in_a, &frame, margin, &mut candidates);
     }
@@ -100,7 +107,7 @@ fn triangle_contact<S: TriangleSource + ?Sized>(
     b_in_a: &Transform,
     frame: &Frame,
     margin: f64,
-    out: &mut Vec<Candidate>,
+    out: &mut Candidates,
 ) {
     let v = source.triangle(t);
     let n_t = source.triangle_normal(t);
@@ -141,7 +148,7 @@ fn edge_contact(
     shape: &Rounded,
     b_in_a: &Transform,
     margin: f64,
-    out: &mut Vec<Candidate>,
+    out: &mut Candidates,
 ) -> bool {
     // Work relative to the triangle's centroid: small coordinates, small round-off.
     let centroid = (v[0] + v[1] + v[2]) / 3.0;
@@ -192,7 +199,7 @@ fn face_contact(
     b_in_a: &Transform,
     down_local: DVec3,
     margin: f64,
-    out: &mut Vec<Candidate>,
+    out: &mut Candidates,
 ) {
     // Balls and capsules: their feature is a point or a segment, clipped here without allocating
     // (the common case for characters and debris on terrain).
@@ -228,7 +235,7 @@ fn face_contact(
         _ => {}
     }
     let feature = supporting_feature(&shape.core, down_local);
-    let incident: Vec<DVec3> = feature.points.iter().map(|&p| b_in_a.transform_point(p)).collect();
+    let incident: SmallVec<[DVec3; 16]> = feature.points.iter().map(|&p| b_in_a.transform_point(p)).collect();
     let code = u32::from(feature.code);
     let mut clipped = clip_to_face(v, n_t, &incident, margin + shape.radius);
     if is_round_cap(&shape.core, &feature) {
@@ -265,7 +272,7 @@ fn point_contact(
     radius: f64,
     margin: f64,
     id: u32,
-    out: &mut Vec<Candidate>,
+    out: &mut Candidates,
 ) {
     let inside = (0..3).all(|k| (v[(k + 1) % 3] - v[k]).cross(c - v[k]).dot(n_t) >= 0.0);
     let height = n_t.dot(c - v[0]);
@@ -295,7 +302,7 @@ fn triangle_id(t: u32, local: u32) -> u32 {
 
 /// One manifold from all candidates (mesh frame) — see the module docs.
 fn build_manifold(
-    mut candidates: Vec<Candidate>,
+    mut candidates: Candidates,
     pose_a: &Transform,
     pose_b: &Transform,
     margin: f64,
@@ -324,7 +331,7 @@ fn build_manifold(
 /// Up to four candidates spanning the patch (see the module docs); areas in the plane normal to
 /// `normal`. Candidates that add nothing to the patch are dropped even when there are few, so a
 /// capsule lying across several triangles keeps just its two ends.
-fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
+fn reduce(c: &[Candidate], normal: DVec3) -> SmallVec<[usize; 4]> {
     let n = c.len();
     if n <= 1 {
         return (0..n).collect();
@@ -360,13 +367,13 @@ fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
     let p = |i: usize| c[i].on_b;
     let second = argmax_above(DISTINCT * DISTINCT, &|i| flat(p(i) - p(first)).length_squared());
     if second == usize::MAX {
-        return vec![first];
+        return smallvec![first];
     }
     let area = |a: DVec3, b: DVec3, q: DVec3| (b - a).cross(q - a).dot(normal);
     let min_area = DISTINCT * flat(p(second) - p(first)).length();
     let third = argmax_above(min_area, &|i| area(p(first), p(second), p(i)).abs());
     if third == usize::MAX {
-        return vec![first, second];
+        return smallvec![first, second];
     }
     let tri = if area(p(first), p(second), p(third)) > 0.0 {
         [first, second, third]
@@ -377,8 +384,8 @@ fn reduce(c: &[Candidate], normal: DVec3) -> Vec<usize> {
         (0..3).fold(0.0_f64, |m, k| m.max(-area(p(tri[k]), p(tri[(k + 1) % 3]), p(i))))
     });
     if fourth == usize::MAX {
-        vec![first, second, third]
+        smallvec![first, second, third]
     } else {
-        vec![first, second, third, fourth]
+        smallvec![first, second, third, fourth]
     }
 }
