@@ -32,7 +32,7 @@ fn bench(c: &mut Criterion) {
     // B just touching A from 64 directions, each turned its own way: one pose asked again and
     // again would let the processor learn every branch of the test by heart, which a scene's
     // thousands of different pairs never allow.
-    let touching: Vec<(Transform, PairCache)> = (0..64)
+    let mut touching: Vec<(Transform, PairCache)> = (0..64)
         .map(|k| {
             let t = k as f64;
             let dir = DVec3::new((0.7 * t).cos(), (0.7 * t).sin(), (1.3 * t).sin()).normalize();
@@ -45,7 +45,6 @@ fn bench(c: &mut Criterion) {
             (pose_b, PairCache::default())
         })
         .collect();
-    let mut touching = touching;
     c.bench_function("hull_hull_touching_64_poses", |b| {
         b.iter(|| {
             touching

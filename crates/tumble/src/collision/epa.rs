@@ -51,6 +51,7 @@ thread_local! {
     /// keeps its table, so a step allocates nothing for it once the tables have grown.
     static EDGE_OWNERS: Cell<FxHashMap<(usize, usize), usize>> = Cell::new(FxHashMap::default());
 }
+
 /// A polytope this large has stopped converging; its nearest face is as good as it gets.
 const MAX_FACES: usize = 1024;
 /// Converged when the support along the nearest face's normal is within this (× scale) of it.
