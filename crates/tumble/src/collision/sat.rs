@@ -505,7 +505,7 @@ mod tests {
     }
 
     /// The edge pairs listed from bit sets are the pairs the plain loop tests: the same query,
-    /// bit for bit, for random hulls (up to 56 edges) and boxes in random poses.
+    /// bit for bit, for random hulls (up to 54 edges) and boxes in random poses.
     #[test]
     fn edge_sets_give_the_plain_loops_query() {
         let mut rng = crate::scenes::rng::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
