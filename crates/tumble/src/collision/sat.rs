@@ -90,12 +90,13 @@ impl<'p, 'h> Frames<'p, 'h> {
         Frames { a, b, b_in_a, verts_b: SmallVec::new(), normals_b: SmallVec::new() }
     }
 
-    /// Maps all of B's vertices and face normals (once; the queries read them from the lists).
+    /// Maps all of B's vertices and face normals (once; the queries read them from the lists),
+    /// each by `vertex_b` and `normal_b` themselves: mapped alone or in the lists, the same bits.
     fn map_all(&mut self) {
         if self.verts_b.is_empty() {
-            let (b, b_in_a) = (self.b, self.b_in_a);
-            self.verts_b = (0..b.vertex_count()).map(|i| b_in_a.transform_point(b.vertex(i))).collect();
-            self.normals_b = (0..b.face_count()).map(|f| b_in_a.rotation * b.face_normal(f)).collect();
+            let verts_b = (0..self.b.vertex_count()).map(|i| self.vertex_b(i)).collect();
+            let normals_b = (0..self.b.face_count()).map(|f| self.normal_b(f)).collect();
+            (self.verts_b, self.normals_b) = (verts_b, normals_b);
         }
     }
 
