@@ -77,12 +77,23 @@ pub(crate) fn normal_coupling(
         let (ai, bi) = arms[i];
         let (wa, wb) = (a.inv_inertia * ai, b.inv_inertia * bi);
         for j in i..count {
-            let (aj, bj) = arms[j];
-            k[i][j] = a.inv_mass + b.inv_mass + aj.dot(wa) + bj.dot(wb);
+            k[i][j] = coupling_entry(arms[j], (wa, wb), a, b);
             k[j][i] = k[i][j];
         }
     }
     k
+}
+
+/// One entry `K_ij` of `normal_coupling`, from row j's arms `(r_a × n, r_b × n)` and row i's
+/// arms through the inverse inertias, `(I_a⁻¹ (r_a × n), I_b⁻¹ (r_b × n))`.
+#[inline(always)]
+pub(crate) fn coupling_entry(
+    (arm_a, arm_b): (DVec3, DVec3),
+    (inertia_arm_a, inertia_arm_b): (DVec3, DVec3),
+    a: &SolverBody,
+    b: &SolverBody,
+) -> f64 {
+    a.inv_mass + b.inv_mass + arm_a.dot(inertia_arm_a) + arm_b.dot(inertia_arm_b)
 }
 
 /// Entries in the upper triangle of a `MAX_POINTS`² symmetric matrix.

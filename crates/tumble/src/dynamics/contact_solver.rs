@@ -32,7 +32,8 @@
 //! at every substep's warm start.
 
 use crate::dynamics::contact_block::{
-    normal_coupling, pack_symmetric, FreeFactor, NormalBlock, RowSet, ALL_ROWS, COUPLING_ENTRIES, MAX_POINTS,
+    coupling_entry, normal_coupling, pack_symmetric, FreeFactor, NormalBlock, RowSet, ALL_ROWS,
+    COUPLING_ENTRIES, MAX_POINTS,
 };
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::joint::parts::invert_or_zero;
@@ -138,6 +139,48 @@ impl PointConstraint {
         let moved_b = b.dp + (r_b - self.r_b0);
         let moved_a = a.dp + (r_a - self.r_a0);
         self.base_separation + n.dot(moved_b - moved_a)
+    }
+
+    /// The normal row's right-hand side and compliance `γ` at separation `s` and normal velocity
+    /// `vn` now, with `k_ii` its diagonal of `K` and `steady` the manifold's steady load per
+    /// point; notes the approach speed when the row engages (for restitution).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn row_target(
+        &mut self,
+        s: f64,
+        vn: f64,
+        k_ii: f64,
+        steady: f64,
+        softness: Softness,
+        ctx: &StepContext,
+        use_bias: bool,
+    ) -> (f64, f64) {
+        let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
+            // Speculative: allow closing the gap, no more.
+            (s * ctx.inv_h, 1.0, 0.0)
+        } else if use_bias {
+            (
+                (softness.bias_rate * s).max(-ctx.max_contact_push_velocity),
+                softness.mass_scale,
+                softness.impulse_scale,
+            )
+        } else {
+            (0.0, 1.0, 0.0)
+        };
+        if vn + bias < 0.0 {
+            // The approach speed at impact (for restitution) is the fastest seen when the row
+            // engages, before its impulse acts: gravity keeps speeding a falling body up after
+            // the step began, and a speculative row engages before the surfaces touch.
+            self.relative_velocity = self.relative_velocity.min(vn);
+        }
+        // The soft row's compliance `γ = k·impulse_scale/mass_scale` (contact_block.rs). It
+        // leaks the accumulated impulse: that is the spring's give, and under a steady load L
+        // it settles compressed by L/k. Leaking only the part above the steady load lets the
+        // spring carry L at zero compression while shocks still meet the soft spring (a slow
+        // integral term on top of the spring–damper).
+        let gamma = if mass_scale > 0.0 { k_ii * impulse_scale / mass_scale } else { 0.0 };
+        (-(vn + bias) - gamma * (self.normal_impulse - steady), gamma)
     }
 
     const EMPTY: PointConstraint = PointConstraint {
@@ -506,6 +549,9 @@ impl ContactConstraint {
         ctx: &StepContext,
         use_bias: bool,
     ) -> Option<f64> {
+        if self.point_count == 1 {
+            return self.solve_single_normal(a, b, ctx, use_bias);
+        }
         let n = self.normal;
         let count = self.point_count;
         // The load the manifold carries at rest, shared evenly: the soft rows give way only to the
@@ -529,36 +575,18 @@ impl ContactConstraint {
         // 4×, and the phantom levers of far speculative points (see `prepare`) by 60×.
         // (Still pairs, where the step-start `K` serves, take the rows of contact_lanes.rs.)
         let coupling = normal_coupling(&anchors[..count], n, a, b);
+        let softness = self.softness;
         for (i, pc) in self.points[..count].iter_mut().enumerate() {
-            let s = separations[i];
-            let (bias, mass_scale, impulse_scale) = if s > SOFT_BAND {
-                // Speculative: allow closing the gap, no more.
-                (s * ctx.inv_h, 1.0, 0.0)
-            } else if use_bias {
-                let soft = self.softness;
-                (
-                    (soft.bias_rate * s).max(-ctx.max_contact_push_velocity),
-                    soft.mass_scale,
-                    soft.impulse_scale,
-                )
-            } else {
-                (0.0, 1.0, 0.0)
-            };
-            let vn = normal_velocities[i];
-            if vn + bias < 0.0 {
-                // The approach speed at impact (for restitution) is the fastest seen when the row
-                // engages, before its impulse acts: gravity keeps speeding a falling body up after
-                // the step began, and a speculative row engages before the surfaces touch.
-                pc.relative_velocity = pc.relative_velocity.min(vn);
-            }
-            // The soft row's compliance `γ = k·impulse_scale/mass_scale` (contact_block.rs). It
-            // leaks the accumulated impulse: that is the spring's give, and under a steady load L
-            // it settles compressed by L/k. Leaking only the part above the steady load lets the
-            // spring carry L at zero compression while shocks still meet the soft spring (a slow
-            // integral term on top of the spring–damper).
-            let k_ii = coupling[i][i];
-            let gamma = if mass_scale > 0.0 { k_ii * impulse_scale / mass_scale } else { 0.0 };
-            block.rhs[i] = -(vn + bias) - gamma * (pc.normal_impulse - steady);
+            let (rhs, gamma) = pc.row_target(
+                separations[i],
+                normal_velocities[i],
+                coupling[i][i],
+                steady,
+                softness,
+                ctx,
+                use_bias,
+            );
+            block.rhs[i] = rhs;
             block.matrix[i] = coupling[i];
             block.matrix[i][i] += gamma;
             accumulated[i] = pc.normal_impulse;
@@ -574,6 +602,43 @@ impl ContactConstraint {
         }
         let impulses: [DVec3; MAX_POINTS] = std::array::from_fn(|i| deltas[i] * n);
         apply_point_impulses(a, b, &anchors[..count], &impulses[..count]);
+        Some(total_normal)
+    }
+
+    /// `solve_normals` for a manifold of one point (a ball's, mostly): the same numbers, without
+    /// the block's arrays of four rows — a rain of spheres spent a fifth of its contact solves
+    /// setting up and walking them.
+    fn solve_single_normal(
+        &mut self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        ctx: &StepContext,
+        use_bias: bool,
+    ) -> Option<f64> {
+        let n = self.normal;
+        let pc = &self.points[0];
+        // As `solve_normals` shares the steady load, over one point.
+        let steady = [pc.steady_normal_impulse].iter().sum::<f64>() / 1.0;
+        let material = pc.anchors(self.radii, n, a, b);
+        let s = pc.separation(material, a, b, n);
+        let (r_a, r_b) = shared_levers(material, self.com_offset, a, b);
+        let vn = n.dot(b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a));
+        if self.is_idle(&[vn], &[s], ctx) {
+            return None;
+        }
+        let arms = (r_a.cross(n), r_b.cross(n));
+        let k = coupling_entry(arms, (a.inv_inertia * arms.0, b.inv_inertia * arms.1), a, b);
+        let softness = self.softness;
+        let pc = &mut self.points[0];
+        let (rhs, gamma) = pc.row_target(s, vn, k, steady, softness, ctx, use_bias);
+        // `NormalBlock::solve` of one row, or its fallback when the row cannot be solved.
+        let k = k + gamma;
+        let applied = if k > 0.0 { (rhs / k).max(-pc.normal_impulse) } else { 0.0 };
+        self.free_rows = ALL_ROWS;
+        pc.normal_impulse = (pc.normal_impulse + applied).max(0.0);
+        pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
+        let total_normal = 0.0 + pc.normal_impulse;
+        apply_point_impulses(a, b, &[(r_a, r_b)], &[applied * n]);
         Some(total_normal)
     }
 
