@@ -93,7 +93,7 @@ impl PatchFriction {
     /// The levers the friction impulse acts at now: the centre's offsets turned with the bodies
     /// (see `PointConstraint::anchors`) and shared, or the step-start ones while both are still.
     #[inline]
-    fn levers(
+    pub fn levers(
         &self,
         radii: (f64, f64),
         normal: DVec3,
@@ -108,16 +108,15 @@ impl PatchFriction {
         shared_levers(anchors, com_offset, a, b)
     }
 
-    /// Stage "warm start".
+    /// Stage "warm start", at the levers of `levers` (or, on a one-point manifold, the point's,
+    /// which are the same).
     pub fn warm_start(
         &self,
-        radii: (f64, f64),
+        (r_a, r_b): (DVec3, DVec3),
         normal: DVec3,
-        com_offset: DVec3,
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) {
-        let (r_a, r_b) = self.levers(radii, normal, com_offset, a, b);
         apply_point_impulse(a, b, r_a, r_b, self.tangent_impulse);
         let twist = self.twist_impulse * normal;
         a.w -= a.inv_inertia * twist;
@@ -126,11 +125,11 @@ impl PatchFriction {
 
     /// Stage "solve"/"relax" (friction has no position error, so both are the same): the
     /// tangent rows bounded by `μ Σλ_n`, the twist row by `μ Σ λ_nᵢ dᵢ`.
+    /// `levers` as for `warm_start` (the bodies' velocities change within, their poses do not).
     pub fn solve(
         &mut self,
-        radii: (f64, f64),
+        (r_a, r_b): (DVec3, DVec3),
         normal: DVec3,
-        com_offset: DVec3,
         friction: f64,
         normal_impulses: &[f64],
         a: &mut SolverBody,
@@ -167,7 +166,6 @@ impl PatchFriction {
         // slip, but the 2×2 mass turns the impulse away from it (by ~20° at a box corner, which
         // cut the friction of a sliding box by 6%); so a sliding patch is updated with the
         // isotropic mass, whose fixed point on the rim is anti-parallel to the slip velocity.
-        let (r_a, r_b) = self.levers(radii, normal, com_offset, a, b);
         let (tangent_mass, sliding_mass) = self.tangent_masses;
         let dv = b.v + b.w.cross(r_b) - a.v - a.w.cross(r_a);
         let vt = dv - normal.dot(dv) * normal;

@@ -458,6 +458,12 @@ impl ContactConstraint {
         if linear_pair(radii, a, b) {
             // Still: the rows linear in the step-start levers (contact_lanes.rs).
             self.warm_start_still(a, b);
+        } else if self.point_count == 1 {
+            // One point: the patch's centre is the point, and so are its levers.
+            let pc = &self.points[0];
+            let levers = shared_levers(pc.anchors(radii, self.normal, a, b), self.com_offset, a, b);
+            apply_point_impulses(a, b, &[levers], &[pc.normal_impulse * self.normal]);
+            self.friction.warm_start(levers, self.normal, a, b);
         } else {
             let count = self.point_count;
             let mut levers = [(DVec3::ZERO, DVec3::ZERO); MAX_POINTS];
@@ -467,7 +473,8 @@ impl ContactConstraint {
                 impulses[i] = pc.normal_impulse * self.normal;
             }
             apply_point_impulses(a, b, &levers[..count], &impulses[..count]);
-            self.friction.warm_start(radii, self.normal, self.com_offset, a, b);
+            let patch_levers = self.friction.levers(radii, self.normal, self.com_offset, a, b);
+            self.friction.warm_start(patch_levers, self.normal, a, b);
         }
         // Zero without torsional and rolling friction (and then no change to ω at all).
         if !self.fits_lanes() {
@@ -485,16 +492,21 @@ impl ContactConstraint {
             // Still: the rows linear in the step-start levers, with friction (contact_lanes.rs).
             let Some(total_normal) = self.solve_still(a, b, ctx, use_bias) else { return };
             total_normal
+        } else if self.point_count == 1 {
+            // One point: the patch's centre is the point, and so are its levers.
+            let Some((total_normal, levers)) = self.solve_single_normal(a, b, ctx, use_bias) else { return };
+            self.friction.solve(levers, n, self.material.friction, &[self.points[0].normal_impulse], a, b);
+            total_normal
         } else {
             let Some(total_normal) = self.solve_normals(a, b, ctx, use_bias) else { return };
             let mut normal_impulses = [0.0; MAX_POINTS];
             for (l, pc) in normal_impulses.iter_mut().zip(&self.points[..self.point_count]) {
                 *l = pc.normal_impulse;
             }
+            let levers = self.friction.levers(radii, n, self.com_offset, a, b);
             self.friction.solve(
-                radii,
+                levers,
                 n,
-                self.com_offset,
                 self.material.friction,
                 &normal_impulses[..self.point_count],
                 a,
@@ -549,9 +561,6 @@ impl ContactConstraint {
         ctx: &StepContext,
         use_bias: bool,
     ) -> Option<f64> {
-        if self.point_count == 1 {
-            return self.solve_single_normal(a, b, ctx, use_bias);
-        }
         let n = self.normal;
         let count = self.point_count;
         // The load the manifold carries at rest, shared evenly: the soft rows give way only to the
@@ -607,14 +616,14 @@ impl ContactConstraint {
 
     /// `solve_normals` for a manifold of one point (a ball's, mostly): the same numbers, without
     /// the block's arrays of four rows — a rain of spheres spent a fifth of its contact solves
-    /// setting up and walking them.
+    /// setting up and walking them. Also returns the levers the row's impulse acted at.
     fn solve_single_normal(
         &mut self,
         a: &mut SolverBody,
         b: &mut SolverBody,
         ctx: &StepContext,
         use_bias: bool,
-    ) -> Option<f64> {
+    ) -> Option<(f64, (DVec3, DVec3))> {
         let n = self.normal;
         let pc = &self.points[0];
         // As `solve_normals` shares the steady load, over one point.
@@ -639,7 +648,7 @@ impl ContactConstraint {
         pc.max_normal_impulse = pc.max_normal_impulse.max(applied);
         let total_normal = 0.0 + pc.normal_impulse;
         apply_point_impulses(a, b, &[(r_a, r_b)], &[applied * n]);
-        Some(total_normal)
+        Some((total_normal, (r_a, r_b)))
     }
 
     /// Writes each normal row's separation and normal velocity now, and the shared levers its
