@@ -80,11 +80,11 @@ pub struct BroadPhase {
 }
 
 /// Moved proxies per task of the threaded pair search: fixed, so the split follows the scene.
-const PAIR_SEARCH_CHUNK: usize = 64;
+const PAIR_SEARCH_CHUNK: usize = 16;
 
 /// Moved proxies below which the pair search stays on the calling thread (a few queries cost
 /// less than handing them out).
-const PAIR_SEARCH_MIN_SHARED: usize = 4 * PAIR_SEARCH_CHUNK;
+const PAIR_SEARCH_MIN_SHARED: usize = 2 * PAIR_SEARCH_CHUNK;
 
 impl Default for BroadPhase {
     fn default() -> Self {
@@ -200,17 +200,21 @@ impl BroadPhase {
     /// [`BroadPhase::find_new_pairs`] into a caller's buffer (cleared first), so a caller that
     /// keeps the buffer allocates nothing once it is large enough.
     pub fn find_new_pairs_into(&mut self, pairs: &mut Vec<(ProxyKey, ProxyKey)>) {
-        self.find_new_pairs_on(pairs, None);
+        self.find_new_pairs_on(pairs, None, |_| false);
     }
 
     /// [`BroadPhase::find_new_pairs_into`], with the queries on `threads` when enough proxies
     /// moved: in chunks of [`PAIR_SEARCH_CHUNK`] moved proxies, each into its own list, joined
     /// and sorted afterwards, so the pairs are the same whatever the split. (The queries only
     /// read the trees; in a rain of 2,000 balls they were most of the broad phase's 0.8 ms.)
+    /// Pairs that are `known` (that have a contact already) are left out where they are found:
+    /// they are most of what a moved proxy finds in a pile, and left for later, sorting them and
+    /// looking each up on one thread was most of the rain's broad phase on two threads.
     pub(crate) fn find_new_pairs_on(
         &mut self,
         pairs: &mut Vec<(ProxyKey, ProxyKey)>,
         threads: Option<&StepThreads>,
+        known: impl Fn((ProxyKey, ProxyKey)) -> bool + Sync,
     ) {
         pairs.clear();
         let mut moved = std::mem::take(&mut self.move_buffer);
@@ -219,19 +223,19 @@ impl BroadPhase {
         match threads.filter(|_| moved.len() >= PAIR_SEARCH_MIN_SHARED) {
             None => {
                 for &key in &moved {
-                    self.collect_new_pairs(key, pairs);
+                    self.collect_new_pairs(key, &known, pairs);
                 }
             }
             Some(threads) => {
                 let mut chunk_pairs = std::mem::take(&mut self.chunk_pairs);
                 chunk_pairs.resize_with(moved.len().div_ceil(PAIR_SEARCH_CHUNK), Vec::new);
-                let (this, moved) = (&*self, &moved);
+                let (this, moved, known) = (&*self, &moved, &known);
                 for_each_chunk_of(Some(threads), &mut chunk_pairs, 1, |chunk, found| {
                     let found = &mut found[0];
                     found.clear();
                     let start = chunk * PAIR_SEARCH_CHUNK;
                     for &key in &moved[start..(start + PAIR_SEARCH_CHUNK).min(moved.len())] {
-                        this.collect_new_pairs(key, found);
+                        this.collect_new_pairs(key, known, found);
                     }
                 });
                 for found in &chunk_pairs {
@@ -247,16 +251,24 @@ impl BroadPhase {
         self.move_buffer = moved; // keep the allocation
     }
 
-    /// Pushes the candidate pairs of one moved proxy (none if it was destroyed after it moved).
-    fn collect_new_pairs(&self, key: ProxyKey, pairs: &mut Vec<(ProxyKey, ProxyKey)>) {
+    /// Pushes the candidate pairs of one moved proxy that are not `known` (none if it was
+    /// destroyed after it moved).
+    fn collect_new_pairs(
+        &self,
+        key: ProxyKey,
+        known: &impl Fn((ProxyKey, ProxyKey)) -> bool,
+        pairs: &mut Vec<(ProxyKey, ProxyKey)>,
+    ) {
         let tree = &self.trees[key.kind() as usize];
         if !tree.contains_proxy(key.proxy_id()) {
             return;
         }
         let fat = tree.fat_aabb(key.proxy_id());
-        self.collect_overlaps(key, &fat, ProxyKind::Dynamic, |other| other != key, pairs);
+        let fresh = |other: ProxyKey| other != key && !known((key.min(other), key.max(other)));
+        self.collect_overlaps(key, &fat, ProxyKind::Dynamic, fresh, pairs);
         if key.kind() == ProxyKind::Dynamic {
-            self.collect_overlaps(key, &fat, ProxyKind::Static, |_| true, pairs);
+            let fresh = |other: ProxyKey| !known((key.min(other), key.max(other)));
+            self.collect_overlaps(key, &fat, ProxyKind::Static, fresh, pairs);
         }
     }
 
@@ -351,8 +363,8 @@ mod tests {
         let mut twin = bp.clone();
         for round in 0..2 {
             let (mut alone, mut shared) = (Vec::new(), Vec::new());
-            bp.find_new_pairs_on(&mut alone, None);
-            twin.find_new_pairs_on(&mut shared, Some(&threads));
+            bp.find_new_pairs_on(&mut alone, None, |_| false);
+            twin.find_new_pairs_on(&mut shared, Some(&threads), |_| false);
             assert!(alone.len() > 2000, "round {round}: only {} pairs", alone.len());
             assert_eq!(alone, shared, "round {round}");
             for (k, &key) in keys.iter().enumerate().filter(|(k, _)| k % 7 == round) {

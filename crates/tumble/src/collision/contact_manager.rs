@@ -196,10 +196,10 @@ impl ContactManager {
         threads: Option<&StepThreads>,
     ) {
         let mut new_pairs = std::mem::take(&mut self.new_pairs);
-        self.broad_phase.find_new_pairs_on(&mut new_pairs, threads);
         // Only the pairs without a contact yet, and room for them at once (a first step that
         // makes thousands of contacts then moves them once, not at every doubling).
-        new_pairs.retain(|&pair| !self.contacts.contains(pair));
+        let contacts = &self.contacts;
+        self.broad_phase.find_new_pairs_on(&mut new_pairs, threads, |pair| contacts.contains(pair));
         self.contacts.reserve(new_pairs.len());
         for &(key_a, key_b) in &new_pairs {
             let (slot_a, child_a) = unpack(self.broad_phase.user_data(key_a));
