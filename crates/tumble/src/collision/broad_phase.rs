@@ -264,10 +264,10 @@ impl BroadPhase {
             return;
         }
         let fat = tree.fat_aabb(key.proxy_id());
+        // One test for both trees: a proxy of the other kind is never `key` itself.
         let fresh = |other: ProxyKey| other != key && !known((key.min(other), key.max(other)));
         self.collect_overlaps(key, &fat, ProxyKind::Dynamic, fresh, pairs);
         if key.kind() == ProxyKind::Dynamic {
-            let fresh = |other: ProxyKey| !known((key.min(other), key.max(other)));
             self.collect_overlaps(key, &fat, ProxyKind::Static, fresh, pairs);
         }
     }
