@@ -19,7 +19,7 @@ use crate::events::EventRecorder;
 use crate::id::{BodyId, SlotPool};
 use crate::math::{DVec3, Transform};
 use crate::shape::Shape;
-use crate::step_threads::StepThreads;
+use crate::step_threads::{for_each_chunk_of, StepThreads};
 
 /// The base speculative distance, m: contacts are made this far before touching (plus the
 /// distance the pair closes within the step).
@@ -69,27 +69,30 @@ pub(crate) struct ContactManager {
     /// The broad phase's new pairs, refilled each step (kept to reuse the allocation).
     #[serde(skip)]
     new_pairs: Vec<(ProxyKey, ProxyKey)>,
-    /// What the threaded narrow phase found for each contact, in contact order.
+    /// What the threaded narrow phase found in each chunk of contacts, in contact order.
     #[serde(skip)]
-    outcomes: Vec<Outcome>,
+    chunk_outcomes: Vec<ChunkOutcome>,
     /// The island links of the contacts, found by the narrow phase (`touching_links`).
     #[serde(skip)]
     links: Vec<(u32, u32)>,
 }
 
-/// One contact's narrow-phase update: whether it is kept, and its event state before and after.
-#[derive(Clone, Copy, Debug)]
-struct Outcome {
-    kept: bool,
-    before: bool,
-    after: bool,
-    /// The contact's island link, if it makes one (see [`island_link`]).
-    link: Option<(u32, u32)>,
+/// What one chunk of the threaded narrow phase found: its contacts' island links and the few
+/// contacts that parted or changed their event state, each in contact order. The step's thread
+/// then reads these short lists, not an outcome per contact: a walk over 12,600 per-contact
+/// outcomes written on the other threads was 90 µs of the rain's serial narrow phase.
+#[derive(Clone, Debug, Default)]
+struct ChunkOutcome {
+    links: Vec<(u32, u32)>,
+    changes: Vec<Change>,
 }
 
-impl Outcome {
-    /// Kept, and no event: the outcome of a place whose contact was dropped before.
-    const UNCHANGED: Outcome = Outcome { kept: true, before: false, after: false, link: None };
+/// A contact of a chunk that parted (`kept` false) or changed its event state from `before`.
+#[derive(Clone, Copy, Debug)]
+struct Change {
+    place: usize,
+    kept: bool,
+    before: bool,
 }
 
 /// The link a contact makes between the islands of its bodies, as their slots: touching, not a
@@ -270,40 +273,54 @@ impl ContactManager {
         };
         // On the threads: whether each contact is kept, and its event state before and after its
         // update; then, on this thread, drop the parted contacts and record the changes in
-        // contact order (a walk over the outcomes that touches only the contacts that changed).
-        let outcomes = &mut self.outcomes;
-        outcomes.clear();
-        outcomes.resize(self.contacts.places(), Outcome::UNCHANGED);
-        let contacts = self.contacts.as_mut_slice();
-        threads.for_each_chunk((contacts, outcomes), NARROW_PHASE_CHUNK, |_, chunk, outcomes| {
-            for (contact, outcome) in chunk.iter_mut().zip(outcomes) {
-                if contact.dropped {
-                    continue; // its proxies may be gone
+        // contact order (the chunks' short lists, in chunk order).
+        let places = self.contacts.places();
+        let chunk_outcomes = &mut self.chunk_outcomes;
+        chunk_outcomes.resize_with(places.div_ceil(NARROW_PHASE_CHUNK), ChunkOutcome::default);
+        let mut jobs: Vec<_> = self
+            .contacts
+            .as_mut_slice()
+            .chunks_mut(NARROW_PHASE_CHUNK)
+            .zip(chunk_outcomes.iter_mut())
+            .collect();
+        for_each_chunk_of(Some(threads), &mut jobs, 1, |offset, jobs| {
+            for (index, (chunk, outcome)) in jobs.iter_mut().enumerate() {
+                outcome.links.clear();
+                outcome.changes.clear();
+                let first = (offset + index) * NARROW_PHASE_CHUNK;
+                for (place, contact) in (first..).zip(chunk.iter_mut()) {
+                    if contact.dropped {
+                        continue; // its proxies may be gone
+                    }
+                    let before = EventRecorder::state(contact);
+                    let Some((a, b)) = kept(contact) else {
+                        outcome.changes.push(Change { place, kept: false, before });
+                        continue;
+                    };
+                    if a.is_awake() || b.is_awake() {
+                        update_manifold(contact, a, b, dt);
+                    }
+                    if EventRecorder::state(contact) != before {
+                        outcome.changes.push(Change { place, kept: true, before });
+                    }
+                    outcome.links.extend(island_link(contact, a, b));
                 }
-                let before = EventRecorder::state(contact);
-                let Some((a, b)) = kept(contact) else {
-                    *outcome = Outcome { kept: false, before, after: before, link: None };
-                    continue;
-                };
-                if a.is_awake() || b.is_awake() {
-                    update_manifold(contact, a, b, dt);
-                }
-                let after = EventRecorder::state(contact);
-                *outcome = Outcome { kept: true, before, after, link: island_link(contact, a, b) };
             }
         });
         self.links.clear();
-        for (place, outcome) in self.outcomes.iter().enumerate() {
-            self.links.extend(outcome.link);
-            let contact = &self.contacts.as_slice()[place];
-            if !outcome.kept {
-                events.record_removed(contact);
-                self.contacts.drop_at(place);
-            } else if outcome.before != outcome.after {
-                events.record(contact, outcome.before);
+        for outcome in &self.chunk_outcomes[..places.div_ceil(NARROW_PHASE_CHUNK)] {
+            self.links.extend_from_slice(&outcome.links);
+            for change in &outcome.changes {
+                let contact = &self.contacts.as_slice()[change.place];
+                if change.kept {
+                    events.record(contact, change.before);
+                } else {
+                    events.record_removed(contact);
+                    self.contacts.drop_at(change.place);
+                }
             }
         }
-        self.contacts.compact_if_sparse();
+        self.contacts.compact_if_sparse(Some(threads));
         self.events.finish(&self.contacts);
     }
 
