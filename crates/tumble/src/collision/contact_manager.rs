@@ -308,7 +308,7 @@ impl ContactManager {
             }
         });
         self.links.clear();
-        for outcome in &self.chunk_outcomes[..places.div_ceil(NARROW_PHASE_CHUNK)] {
+        for outcome in &self.chunk_outcomes {
             self.links.extend_from_slice(&outcome.links);
             for change in &outcome.changes {
                 let contact = &self.contacts.as_slice()[change.place];
