@@ -15,12 +15,12 @@
 //! array for a few contacts: the pile of falling balls drops about 35 of its 12,500 contacts a
 //! step, and the compaction moved some 8,900 kilobyte contacts, 340 µs of a step on the step's
 //! own thread while the others waited. Now it moves them about once in 20 steps; the walks skip
-//! the dropped places, which they read anyway. With threads, the compaction copies the live
-//! contacts in chunks into a second array (the one the last compaction left) and swaps the two:
-//! about 1 ms for the pile's contacts on two threads, against some 3 ms in place on one. (Filling each dropped contact's place with the
+//! the dropped places, which they read anyway. (Filling each dropped contact's place with the
 //! last contact instead also moves little, but scatters the order: contacts next to each other
 //! no longer touch bodies next to each other, and a new order changes how the solver's colours
-//! fall, hence every result.)
+//! fall, hence every result.) With threads, the compaction copies the live contacts in chunks
+//! into a second array (the one the last compaction left) and swaps the two: about 1 ms for the
+//! pile's contacts on two threads, against some 3 ms in place on one.
 //!
 //! The order of the live contacts is a pure function of the history of the world — the pairs made
 //! in each step, in the broad phase's order — so it is the same on every run and for any thread
@@ -237,7 +237,6 @@ mod tests {
     use super::*;
     use crate::collision::broad_phase::ProxyKind;
     use crate::collision::ProxyId;
-    use crate::step_threads::StepThreads;
 
     fn contact(a: u32, b: u32) -> Contact {
         let key = |i| ProxyKey::new(ProxyKind::Dynamic, ProxyId(i));
