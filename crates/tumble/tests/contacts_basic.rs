@@ -112,6 +112,19 @@ fn c1_tumbling_box_corner_impact_stops_the_corner() {
 /// for a second first, so its contact is established and warm.
 #[test]
 fn c3_sliding_box_stops() {
+    sliding_box_stops(1000.0);
+}
+
+/// C3 for a box of 10,000 tonnes (a unit box of density 10⁷ kg/m³): Coulomb friction does not
+/// depend on the mass. Regression: the tangent effective mass was inverted with a threshold
+/// relative to a unit entry added along the normal, not to the block itself, so a body over about
+/// a thousand tonnes got no friction at all and slid on for ever.
+#[test]
+fn c3_a_heavy_sliding_box_stops_too() {
+    sliding_box_stops(1e7);
+}
+
+fn sliding_box_stops(density: f64) {
     let mu = 0.4;
     let v0 = 5.0;
     let mut world = world(Default::default());
@@ -120,6 +133,7 @@ fn c3_sliding_box_stops() {
         .add_body(BodyDef {
             name: "slider".into(),
             shape: cuboid(DVec3::splat(0.5)),
+            density,
             position: DVec3::new(-5.0, 0.0, 0.5),
             material: material(mu, 0.0),
             ..Default::default()
@@ -156,7 +170,7 @@ fn c3_sliding_box_stops() {
     let (d_exact, t_exact) = (v0 * v0 / (2.0 * mu * G), v0 / (mu * G));
     let (d_err, t_err) = ((distance - d_exact) / d_exact, (stop_time - t_exact) / t_exact);
     println!(
-        "C3: stopped after {distance:.4} m (v₀²/2μg = {d_exact:.4} m, {:+.3}%) at t = {stop_time:.4} s (v₀/μg = {t_exact:.4} s, {:+.3}%); deceleration {:.4} m/s² (μg = {:.4})",
+        "C3 (density {density:e}): stopped after {distance:.4} m (v₀²/2μg = {d_exact:.4} m, {:+.3}%) at t = {stop_time:.4} s (v₀/μg = {t_exact:.4} s, {:+.3}%); deceleration {:.4} m/s² (μg = {:.4})",
         100.0 * d_err,
         100.0 * t_err,
         -slope(&times, &speeds),

@@ -17,9 +17,9 @@
 
 use crate::dynamics::contact_block::MAX_POINTS;
 use crate::dynamics::contact_solver::{
-    linear_pair, round_anchors, round_locals, shared_levers, tangent_block_inverse,
+    linear_pair, round_anchors, round_locals, shared_levers, tangent_inverse,
 };
-use crate::dynamics::joint::parts::{apply_point_impulse, point_mass_matrix};
+use crate::dynamics::joint::parts::apply_point_impulse;
 use crate::dynamics::solver_body::SolverBody;
 use crate::math::{DMat3, DVec3};
 
@@ -73,10 +73,11 @@ impl PatchFriction {
         let count = arms.len().max(1) as f64;
         let r_a = arms.iter().map(|r| r.0).sum::<DVec3>() / count;
         let r_b = arms.iter().map(|r| r.1).sum::<DVec3>() / count;
-        let projector = DMat3::IDENTITY - outer(normal, normal);
+        // The part of `v` in the tangent plane.
+        let tangent = |v: DVec3| v - normal.dot(v) * normal;
         let mut twist_arms = [0.0; MAX_POINTS];
         for (arm, r) in twist_arms.iter_mut().zip(arms) {
-            *arm = (projector * (r.1 - r_b)).length();
+            *arm = tangent(r.1 - r_b).length();
         }
         let (r_a_local, r_b_local) = round_locals((r_a, r_b), radii, normal, a, b);
         PatchFriction {
@@ -85,7 +86,7 @@ impl PatchFriction {
             levers_start: shared_levers((r_a, r_b), com_offset, a, b),
             twist_arms,
             tangent_masses: tangent_masses(a, b, (r_a, r_b), normal),
-            tangent_impulse: projector * tangent_impulse,
+            tangent_impulse: tangent(tangent_impulse),
             twist_impulse,
         }
     }
@@ -186,14 +187,20 @@ impl PatchFriction {
 
 /// The tangent effective masses at the levers `(r_a, r_b)`: the inverse of the 2×2 tangent block
 /// of `K`, embedded in 3×3 over the plane, and the isotropic `2 / trace(K_t)` that steers sliding
-/// friction (see `solve`).
+/// friction (see `solve`). On an orthonormal basis `t₁, t₂` of the plane the block's entries are
+/// `tᵢ·K tⱼ` with `K = (1/m_a + 1/m_b)·1 − r̂_a I_a⁻¹ r̂_a − r̂_b I_b⁻¹ r̂_b`, and each body adds
+/// `(r × tᵢ)·I⁻¹ (r × tⱼ)` (as `r̂ᵀ = −r̂`): four inertia products instead of the two 3×3
+/// matrix products per body of `K` itself.
 fn tangent_masses(a: &SolverBody, b: &SolverBody, (r_a, r_b): (DVec3, DVec3), normal: DVec3) -> (DMat3, f64) {
-    let k = point_mass_matrix(a, r_a) + point_mass_matrix(b, r_b);
-    let kn = normal.dot(k * normal);
-    let trace_t = k.x_axis.x + k.y_axis.y + k.z_axis.z - kn;
-    (tangent_block_inverse(k, normal), if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 })
-}
-
-fn outer(u: DVec3, v: DVec3) -> DMat3 {
-    DMat3::from_cols(u * v.x, u * v.y, u * v.z)
+    let (t1, t2) = normal.any_orthonormal_pair();
+    let (a1, a2, b1, b2) = (r_a.cross(t1), r_a.cross(t2), r_b.cross(t1), r_b.cross(t2));
+    let (ia1, ia2) = (a.inv_inertia * a1, a.inv_inertia * a2);
+    let (ib1, ib2) = (b.inv_inertia * b1, b.inv_inertia * b2);
+    let linear = a.inv_mass + b.inv_mass;
+    let k11 = linear + a1.dot(ia1) + b1.dot(ib1);
+    let k12 = a1.dot(ia2) + b1.dot(ib2);
+    let k22 = linear + a2.dot(ia2) + b2.dot(ib2);
+    // The trace over the plane: `trace(K) − n·K n`.
+    let trace_t = k11 + k22;
+    (tangent_inverse((t1, t2), [k11, k12, k22]), if trace_t > 0.0 { 2.0 / trace_t } else { 0.0 })
 }

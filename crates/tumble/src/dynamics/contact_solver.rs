@@ -36,7 +36,6 @@ use crate::dynamics::contact_block::{
     COUPLING_ENTRIES, MAX_POINTS,
 };
 use crate::dynamics::contact_friction::PatchFriction;
-use crate::dynamics::joint::parts::invert_or_zero;
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver::StepContext;
 use crate::dynamics::solver_body::SolverBody;
@@ -232,13 +231,31 @@ pub(crate) fn round_anchors(
     (a.rotation * r_a_local + radii.0 * n, b.rotation * r_b_local - radii.1 * n)
 }
 
-/// The inverse of `k`'s block on the plane perpendicular to `normal`, as a 3×3 that maps the
-/// plane to itself (and the normal to 0): the tangent effective mass of friction and rolling rows.
+/// The inverse of `k`'s block on the plane perpendicular to the unit `normal`, as a 3×3 that maps
+/// the plane to itself (and the normal to 0): the tangent effective mass of rolling rows.
 pub(crate) fn tangent_block_inverse(k: DMat3, normal: DVec3) -> DMat3 {
-    let outer = DMat3::from_cols(normal * normal.x, normal * normal.y, normal * normal.z);
-    let projector = DMat3::IDENTITY - outer;
-    // A unit entry along the normal makes the 3×3 invertible; it is projected away again.
-    projector * invert_or_zero(projector * k * projector + outer) * projector
+    let (t1, t2) = normal.any_orthonormal_pair();
+    let (k_t1, k_t2) = (k * t1, k * t2);
+    tangent_inverse((t1, t2), [t1.dot(k_t1), t1.dot(k_t2), t2.dot(k_t2)])
+}
+
+/// `T B⁻¹ Tᵀ` for the symmetric block `B = [[b₁₁, b₁₂], [b₁₂, b₂₂]]` of a matrix on the orthonormal
+/// basis `T = (t₁, t₂)` of a tangent plane: the block's inverse on the plane, embedded in 3×3 and
+/// zero along the normal, the same whichever basis of the plane. Zero when the block is singular
+/// to round-off (nothing moves along the plane).
+pub(crate) fn tangent_inverse((t1, t2): (DVec3, DVec3), [b11, b12, b22]: [f64; 3]) -> DMat3 {
+    let det = b11 * b22 - b12 * b12;
+    let scale = b11.abs().max(b22.abs());
+    // A NaN entry makes `det` NaN.
+    if det.is_nan() || det <= 1e-12 * scale * scale {
+        return DMat3::ZERO;
+    }
+    let inv_det = 1.0 / det;
+    let (i11, i12, i22) = (b22 * inv_det, -b12 * inv_det, b11 * inv_det);
+    // Column c of Σⱼₖ iⱼₖ tⱼ tₖᵀ is u t₁[c] + w t₂[c].
+    let u = i11 * t1 + i12 * t2;
+    let w = i12 * t1 + i22 * t2;
+    DMat3::from_cols(u * t1.x + w * t2.x, u * t1.y + w * t2.y, u * t1.z + w * t2.z)
 }
 
 /// The lever arms at which a contact's impulse acts: one shared world point for both bodies.
@@ -376,8 +393,12 @@ impl ContactConstraint {
         material: ContactMaterial,
         ctx: &StepContext,
     ) {
-        let hertz =
-            if a.inv_mass == 0.0 || b.inv_mass == 0.0 { ctx.static_contact_hertz } else { ctx.contact_hertz };
+        // The same two softnesses for every manifold of the step (solver.rs, `StepContext`).
+        self.softness = if a.inv_mass == 0.0 || b.inv_mass == 0.0 {
+            ctx.static_contact_softness
+        } else {
+            ctx.contact_softness
+        };
         self.radii = radii;
         self.body_a = body_a;
         self.body_b = body_b;
@@ -387,7 +408,6 @@ impl ContactConstraint {
         self.point_count = points.len().min(4);
         self.rolling_impulse = DVec3::ZERO;
         self.torsional_impulse = 0.0;
-        self.softness = Softness::new(hertz, ctx.contact_damping_ratio, ctx.h);
         // The block's first guess: the points that ended the last step carrying load, if any did;
         // a new contact's points all free.
         let loaded = points[..self.point_count]

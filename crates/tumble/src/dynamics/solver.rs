@@ -135,11 +135,10 @@ pub(crate) struct StepContext {
     pub substeps: u32,
     pub gravity: DVec3,
     pub joint_softness: Softness,
-    /// Stiffness of contacts between two moving bodies, Hz (capped).
-    pub contact_hertz: f64,
+    /// The soft normal rows of contacts between two moving bodies (contact hertz, capped).
+    pub contact_softness: Softness,
     /// Contacts against static (or kinematic) bodies: twice as stiff, since only one body moves.
-    pub static_contact_hertz: f64,
-    pub contact_damping_ratio: f64,
+    pub static_contact_softness: Softness,
     pub max_contact_push_velocity: f64,
     pub restitution_threshold: f64,
     pub warm_starting: bool,
@@ -175,9 +174,16 @@ impl StepContext {
             // Contacts between two moving bodies: an eighth of the substep rate (`ωh = π/4`). A
             // box pyramid at 4 substeps holds at 30 Hz (`ωh = π/4`) and falls at 40 Hz and above
             // (`ωh ≥ 1.05`: 0.18 m, 60 Hz: 1.4 m); against a static body, twice that.
-            contact_hertz: settings.contact_hertz.min(0.5 * max_hertz),
-            static_contact_hertz: (2.0 * settings.contact_hertz).min(max_hertz),
-            contact_damping_ratio: settings.contact_damping_ratio,
+            contact_softness: Softness::new(
+                settings.contact_hertz.min(0.5 * max_hertz),
+                settings.contact_damping_ratio,
+                h,
+            ),
+            static_contact_softness: Softness::new(
+                (2.0 * settings.contact_hertz).min(max_hertz),
+                settings.contact_damping_ratio,
+                h,
+            ),
             max_contact_push_velocity: settings.max_contact_push_velocity,
             restitution_threshold: settings.restitution_threshold,
             warm_starting: settings.warm_starting,
