@@ -215,6 +215,65 @@ def table(all_results, engines, steps_of):
     return "\n".join(lines)
 
 
+# The quality results each scene is judged by, all "lower is better"; a peer whose state blew up
+# and was reset (MuJoCo's "diverged") is worse than any finished run. The target (BENCHMARKS.md):
+# Tumble at least twice the fastest peer's steps/s, at equal or better quality.
+QUALITY_KEYS = {
+    "pyramid": ["max displacement"],
+    "large_pyramid": ["max displacement"],
+    "rain": ["escaped", "max penetration"],
+    "chain": ["max joint separation"],
+    "ragdolls": ["max joint separation"],
+    "convex_pile": ["max penetration"],
+    "tumbling": ["energy error"],
+}
+TARGET = 2.0
+
+
+def at_least_as_good(scene, ours, theirs):
+    """Whether the quality metrics `ours` are equal to or better than `theirs` on `scene`."""
+    if theirs.get("diverged (state reset)"):
+        return True
+    keys = QUALITY_KEYS.get(scene, [])
+    if any(k not in ours or k not in theirs for k in keys):
+        return False
+    # A flag such as "all asleep" counts only when the peer has it and Tumble does not.
+    if theirs.get("all asleep") is True and not ours.get("all asleep"):
+        return False
+    return all(float(ours[k]) <= float(theirs[k]) for k in keys)
+
+
+def targets(all_results, engines):
+    """Per scene: the fastest peer, the fastest Tumble run at equal or better quality than it, the
+    ratio, and whether the 2x target is met (or by how much it is missed)."""
+    lines = [
+        "| scene | fastest peer | its steps/s | its quality | Tumble at equal or better quality | steps/s | ratio | target 2x |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for scene, results in all_results.items():
+        peers = [(statistics.median(r["rates"]), e) for e, r in results.items() if not e.startswith("tumble") and r["rates"]]
+        if not peers:
+            continue
+        peer_rate, peer = max(peers)
+        theirs = results[peer]["last"].get("metrics") or {}
+        candidates = [
+            (statistics.median(r["rates"]), e)
+            for e, r in results.items()
+            if e.startswith("tumble") and r["rates"] and at_least_as_good(scene, r["last"].get("metrics") or {}, theirs)
+        ]
+        peer_quality = fmt_metrics(theirs)
+        if not candidates:
+            lines.append(f"| {scene} | {peer} | {peer_rate:,.1f} | {peer_quality} | none | — | — | no Tumble run at that quality |")
+            continue
+        rate, engine = max(candidates)
+        ratio = rate / peer_rate
+        verdict = "met" if ratio >= TARGET else f"missed: {TARGET / ratio:.2f}x short"
+        lines.append(
+            f"| {scene} | {peer} | {peer_rate:,.1f} | {peer_quality} | {engine} | {rate:,.1f} | {ratio:.2f} | {verdict} |"
+        )
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--scenes", default=",".join(TABLE_STEPS), help="comma-separated scene names")
@@ -254,7 +313,14 @@ def main():
         all_results = {}
         for scene in scenes:
             all_results[scene] = bench_scene(scene, engines, python, steps_of(scene), args.runs, args.timeout, args.threads)
-        report = header + "dt 1/60 s; steps per run as listed\n\n" + table(all_results, engines, steps_of) + "\n"
+        report = (
+            header
+            + "dt 1/60 s; steps per run as listed\n\n"
+            + table(all_results, engines, steps_of)
+            + "\n\nTargets: Tumble against the fastest peer, at equal or better quality (`QUALITY_KEYS`)\n\n"
+            + targets(all_results, engines)
+            + "\n"
+        )
     print(report)
     if args.out:
         with open(args.out, "w") as f:
