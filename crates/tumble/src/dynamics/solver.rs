@@ -290,7 +290,7 @@ impl World {
         // Joint trees: the figures whose joints' equality rows are solved exactly.
         let mut trees = std::mem::take(&mut self.joint_trees);
         if self.solver_settings.joint_trees {
-            trees.build(&mut self.joints, &bodies, ctx.project_joint_trees);
+            trees.build(&mut self.joints, &bodies);
         } else {
             trees.clear(&mut self.joints);
         }
@@ -371,6 +371,9 @@ impl World {
         let ctx = &ctx;
         let projection_iterations = self.solver_settings.joint_projection_iterations;
         let projection_tolerance = self.solver_settings.joint_projection_tolerance;
+        // Projected trees are held at the position level: their velocity rows are rigid without
+        // bias (`JointTrees::project_positions`).
+        let tree_bias_rate = if ctx.project_joint_trees { 0.0 } else { ctx.joint_softness.bias_rate };
         run_on_threads(threads, |thread| {
             // The rows of the still manifolds' groups, for the step (contact_lanes.rs).
             data.fill_blocks(thread);
@@ -395,18 +398,18 @@ impl World {
                 );
                 for _ in 0..ctx.solve_iterations {
                     joint_stage(&|joint, a, b| joint.solve(a, b, ctx, true));
+                    // The trees before the contacts, which keep the last word as they do in the
+                    // relax pass (`docs/joint-tree.md`, "Where it runs in the step").
+                    if has_joints {
+                        data.serial(thread, |(joints, trees), bodies| {
+                            trees.solve(joints, bodies, tree_bias_rate)
+                        });
+                    }
                     data.contacts_in_groups(
                         thread,
                         |c, a, b| c.solve(a, b, ctx, true),
                         |cs, block, bodies| solve_group(cs, block, bodies, ctx, true),
                     );
-                    if has_joints {
-                        data.serial(thread, |(joints, trees), bodies| {
-                            // Projected trees are held at the position level: their rows take
-                            // no bias (`JointTrees::project_positions`).
-                            trees.solve(joints, bodies, ctx.joint_softness.bias_rate)
-                        });
-                    }
                 }
                 data.bodies(thread, |body| body.integrate_position(ctx.h));
                 // Joint trees back onto their constraints (before the relax pass reads the poses).

@@ -202,10 +202,6 @@ pub struct Joint {
     /// part of a joint tree (`dynamics/joint_tree/`) rather than row by row here.
     #[serde(skip)]
     pub(crate) in_tree: bool,
-    /// Set by the solver each step: the joint's tree is held on its joints by the position
-    /// projection (`JointTrees::mark_projected`), so its rows carry no bias to relax.
-    #[serde(skip)]
-    pub(crate) tree_projected: bool,
     /// Constraint force and torque magnitudes over the last step, N and N·m.
     pub(crate) force: f64,
     pub(crate) torque: f64,
@@ -244,7 +240,6 @@ impl Joint {
             broken: false,
             solving: false,
             in_tree: false,
-            tree_projected: false,
             force: 0.0,
             torque: 0.0,
             frames: JointFrames::default(),
@@ -331,7 +326,7 @@ impl Joint {
         // exactly in the biased pass (`joint_tree/`). A projected tree's rows carry no bias, so
         // there is none to relax either; an unprojected tree's rows are relaxed row by row here,
         // before the contacts, so contacts keep the last word.
-        if self.in_tree && (use_bias || self.tree_projected) {
+        if self.in_tree && (use_bias || ctx.project_joint_trees) {
             return;
         }
         let pose = self.frames.pose(a, b);

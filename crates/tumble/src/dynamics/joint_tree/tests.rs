@@ -8,8 +8,8 @@ use crate::shape::{Cuboid, Shape};
 use crate::{BodyDef, BodyKind, World};
 
 /// The solver bodies of a world's bodies, its joints prepared for a step of 1/60 s, and the
-/// trees built from them, for the position projection or not (`project`).
-fn prepared(world: &mut World, project: bool) -> (StepContext, Vec<SolverBody>, JointTrees) {
+/// trees built from them.
+fn prepared(world: &mut World) -> (StepContext, Vec<SolverBody>, JointTrees) {
     let ctx = StepContext::new(1.0 / 60.0, world.gravity, &world.solver_settings);
     let mut bodies = vec![SolverBody::FIXED; world.bodies.capacity_index()];
     for (id, b) in world.bodies.iter() {
@@ -21,7 +21,7 @@ fn prepared(world: &mut World, project: bool) -> (StepContext, Vec<SolverBody>, 
         j.prepare(a, b, &ctx);
     }
     let mut trees = JointTrees::default();
-    trees.build(&mut world.joints, &bodies, project);
+    trees.build(&mut world.joints, &bodies);
     (ctx, bodies, trees)
 }
 
@@ -55,16 +55,16 @@ fn three_boxes(half: DVec3, turn: f64, kinds: [JointKind; 2]) -> (World, Vec<cra
 fn trees_are_rebuilt_only_when_their_joints_or_moving_bodies_change() {
     let ball = || JointKind::Ball(BallJoint::new());
     let (mut world, ids) = three_boxes(DVec3::splat(0.1), 0.0, [ball(), ball()]);
-    let (_, mut bodies, mut trees) = prepared(&mut world, false);
+    let (_, mut bodies, mut trees) = prepared(&mut world);
     // Three bodies and two joints, one figure: five nodes.
     assert_eq!(trees.nodes.len(), 5);
     let marker = 1234.5;
     trees.nodes[0].x[0] = marker;
-    trees.build(&mut world.joints, &bodies, false);
+    trees.build(&mut world.joints, &bodies);
     assert_eq!(trees.nodes[0].x[0], marker, "the same joints and bodies keep the nodes");
 
     bodies[ids[1].index()] = SolverBody::FIXED;
-    trees.build(&mut world.joints, &bodies, false);
+    trees.build(&mut world.joints, &bodies);
     // Two figures, each a joint hung from the (now fixed) middle body and its outer body.
     assert_eq!(trees.nodes.len(), 4);
     assert!(trees.nodes.iter().all(|node| node.x[0] != marker));
@@ -78,7 +78,7 @@ fn trees_are_rebuilt_only_when_their_joints_or_moving_bodies_change() {
 fn kept_trees_do_not_carry_a_non_finite_solve_over() {
     let kinds = [JointKind::Ball(BallJoint::new()), JointKind::Fixed(FixedJoint::new())];
     let (mut world, ids) = three_boxes(DVec3::new(0.2, 0.1, 0.1), 0.3, kinds);
-    let (_, mut bodies, mut trees) = prepared(&mut world, false);
+    let (_, mut bodies, mut trees) = prepared(&mut world);
     let clean = bodies.clone();
     bodies[ids[2].index()].w = DVec3::new(f64::INFINITY, 0.0, f64::NAN);
     bodies[ids[2].index()].q = DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0);
@@ -87,7 +87,7 @@ fn kept_trees_do_not_carry_a_non_finite_solve_over() {
 
     let mut bodies = clean;
     bodies[ids[0].index()].w = DVec3::new(0.5, -1.0, 2.0);
-    trees.build(&mut world.joints, &bodies, false);
+    trees.build(&mut world.joints, &bodies);
     assert_eq!(trees.nodes.len(), 5, "the same trees are kept");
     trees.solve(&mut world.joints, &mut bodies, 10.0);
     assert!(bodies.iter().all(|b| b.v.is_finite() && b.w.is_finite()));
@@ -145,8 +145,8 @@ fn projection_closes_the_joints_and_keeps_the_centre_of_mass() {
         world.set_angular_velocity(id, DVec3::new(0.3, k, -2.0)).unwrap();
     }
 
-    let (ctx, mut bodies, mut trees) = prepared(&mut world, true);
-    assert!(world.joints.iter().all(|(_, j)| j.in_tree && j.tree_projected));
+    let (ctx, mut bodies, mut trees) = prepared(&mut world);
+    assert!(world.joints.iter().all(|(_, j)| j.in_tree));
 
     // Pull the figure apart: shifts of a few centimetres and turns of a few degrees.
     for (k, &id) in ids.iter().enumerate() {
@@ -182,9 +182,10 @@ fn projection_closes_the_joints_and_keeps_the_centre_of_mass() {
     assert!(bodies.iter().zip(&velocities).all(|(b, &(v, w))| b.v == v && b.w == w));
 }
 
-/// A branching figure hung from the ground, with a loop and a second joint to the ground:
-/// the tree takes exactly the joints that keep it a forest, and one solve makes every tree
-/// row's velocity `−β C` to round-off, whatever the mass ratios.
+/// A branching figure hung from the ground, with a loop and a second joint to the ground: the
+/// loop's joints stay out of the forest, and since they act on the figure, so does the rest of
+/// it. Without them the figure is one tree, and one solve makes every tree row's velocity `−β C`
+/// to round-off, whatever the mass ratios.
 #[test]
 fn one_solve_satisfies_every_tree_row_exactly() {
     let mut world = World::new(Default::default()).unwrap();
@@ -217,8 +218,10 @@ fn one_solve_satisfies_every_tree_row_exactly() {
     joint(&mut world, ground, b1, DVec3::new(0.0, 0.0, 2.8), JointKind::Ball(BallJoint::new()));
     joint(&mut world, b1, b2, DVec3::new(-0.2, 0.0, 2.25), JointKind::Hinge(HingeJoint::default()));
     joint(&mut world, b1, b3, DVec3::new(0.2, 0.0, 2.25), JointKind::Ball(BallJoint::new()));
-    joint(&mut world, b2, b3, DVec3::new(0.0, 0.0, 2.0), JointKind::Fixed(FixedJoint::new()));
-    joint(&mut world, b3, ground, DVec3::new(0.6, 0.0, 2.0), JointKind::Ball(BallJoint::new()));
+    let loop_joint =
+        joint(&mut world, b2, b3, DVec3::new(0.0, 0.0, 2.0), JointKind::Fixed(FixedJoint::new()));
+    let ground_joint =
+        joint(&mut world, b3, ground, DVec3::new(0.6, 0.0, 2.0), JointKind::Ball(BallJoint::new()));
     joint(&mut world, b2, b4, DVec3::new(-0.4, 0.0, 1.75), JointKind::Slider(SliderJoint::default()));
     // Velocities and a drift, so rows have both `Ċ` and `C`.
     for (k, id) in [b1, b2, b3, b4].into_iter().enumerate() {
@@ -228,13 +231,12 @@ fn one_solve_satisfies_every_tree_row_exactly() {
         world.bodies.get_mut(id.into()).unwrap().state.com_world += DVec3::new(0.001 * k, -0.002, 0.0005);
     }
 
-    let (_, mut bodies, mut trees) = prepared(&mut world, false);
-    let in_tree: Vec<bool> = world.joints.iter().map(|(_, j)| j.in_tree).collect();
-    assert_eq!(
-        in_tree,
-        [true, true, true, false, false, true],
-        "the loop and the second ground joint stay out"
-    );
+    prepared(&mut world);
+    assert!(world.joints.iter().all(|(_, j)| !j.in_tree), "the loop takes the whole figure out");
+    world.remove_joint(loop_joint).unwrap();
+    world.remove_joint(ground_joint).unwrap();
+    let (_, mut bodies, mut trees) = prepared(&mut world);
+    assert!(world.joints.iter().all(|(_, j)| j.in_tree));
 
     let beta = 40.0;
     trees.solve(&mut world.joints, &mut bodies, beta);
@@ -249,14 +251,14 @@ fn one_solve_satisfies_every_tree_row_exactly() {
 }
 
 /// Two figures of two welded boxes each; the first also hangs from the ground on a hinge with
-/// limits, which the row-by-row solve keeps. The projection holds only the second: moving the
-/// first back onto its weld alone would move it off the hinge, whose rows would push it off the
-/// weld again. Pulled apart, the second is put back and the first is not moved at all.
+/// limits, which the row-by-row solve keeps. Only the second is a tree: the first figure's weld
+/// goes row by row with the hinge (`leave_out_held_figures`), and so does a figure a distance
+/// joint reaches.
 #[test]
-fn trees_held_by_other_joints_are_not_projected() {
+fn figures_other_joints_act_on_are_not_trees() {
     let mut world = World::new(Default::default()).unwrap();
     let ground = world.add_body(BodyDef { kind: BodyKind::Static, ..Default::default() }).unwrap();
-    let boxes: Vec<_> = (0..4)
+    let boxes: Vec<_> = (0..6)
         .map(|k| {
             world
                 .add_body(BodyDef {
@@ -267,26 +269,23 @@ fn trees_held_by_other_joints_are_not_projected() {
                 .unwrap()
         })
         .collect();
-    let weld = || JointKind::Fixed(FixedJoint::new());
-    world.add_joint(JointDef::new(boxes[0], boxes[1], DVec3::new(0.15, 0.0, 1.0), weld())).unwrap();
-    world.add_joint(JointDef::new(boxes[2], boxes[3], DVec3::new(0.75, 0.0, 1.0), weld())).unwrap();
+    let weld = |world: &mut World, k: usize| {
+        let anchor = DVec3::new(0.3 * k as f64 + 0.15, 0.0, 1.0);
+        world
+            .add_joint(JointDef::new(boxes[k], boxes[k + 1], anchor, JointKind::Fixed(FixedJoint::new())))
+            .unwrap();
+    };
+    weld(&mut world, 0);
+    weld(&mut world, 2);
+    weld(&mut world, 4);
     let limited = HingeJoint { limits: Some(crate::Limits::new(-0.5, 0.5)), ..Default::default() };
     let hinge = JointDef::new(ground, boxes[0], DVec3::new(-0.15, 0.0, 1.0), JointKind::Hinge(limited));
     world.add_joint(hinge.with_axis(DVec3::Y)).unwrap();
+    let rope = JointKind::Distance(crate::DistanceJoint::default());
+    world.add_joint(JointDef::new(ground, boxes[5], DVec3::new(1.5, 0.0, 2.0), rope)).unwrap();
 
-    let (ctx, mut bodies, mut trees) = prepared(&mut world, true);
-    let flags: Vec<(bool, bool)> = world.joints.iter().map(|(_, j)| (j.in_tree, j.tree_projected)).collect();
-    assert_eq!(flags, [(true, false), (true, true), (false, false)]);
-
-    for &id in &boxes {
-        bodies[id.index()].displace(DVec3::new(0.0, 0.01, -0.02), DVec3::new(0.0, 0.0, 0.05));
-    }
-    let held: Vec<_> = boxes[..2].iter().map(|id| (bodies[id.index()].dp, bodies[id.index()].q)).collect();
-    trees.project_positions(&world.joints, &mut bodies, 1e-9, 8, ctx.h);
-    let after: Vec<_> = boxes[..2].iter().map(|id| (bodies[id.index()].dp, bodies[id.index()].q)).collect();
-    assert_eq!(held, after, "the figure the hinge holds is not moved");
-    let joint = world.joints.iter().nth(1).unwrap().1;
-    let rows = joint.equality_rows(&bodies[boxes[2].index()], &bodies[boxes[3].index()]).unwrap();
-    let error = rows.error[..rows.len].iter().fold(0.0_f64, |m, e| m.max(e.abs()));
-    assert!(error <= 1e-9, "the free figure is put back on its weld: {error:e}");
+    let (_, _, trees) = prepared(&mut world);
+    let in_tree: Vec<bool> = world.joints.iter().map(|(_, j)| j.in_tree).collect();
+    assert_eq!(in_tree, [false, true, false, false, false]);
+    assert_eq!(trees.nodes.len(), 3, "one figure: two bodies and their weld");
 }
