@@ -418,6 +418,7 @@ impl World {
                         trees.project_positions(
                             joints,
                             bodies,
+                            world_bodies,
                             projection_tolerance,
                             projection_iterations,
                             ctx.h,

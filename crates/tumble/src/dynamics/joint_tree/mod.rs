@@ -31,11 +31,12 @@
 
 pub(crate) mod block;
 
+use crate::body::Body;
 use crate::dynamics::joint::equality::EqualityRows;
 use crate::dynamics::joint::Joint;
 use crate::dynamics::solver_body::SolverBody;
 use crate::id::{RawId, SlotPool};
-use crate::math::DVec3;
+use crate::math::{DMat3, DVec3};
 use block::{Block, BlockVector, Ldlt, MAX_DIM};
 
 const NONE: u32 = u32::MAX;
@@ -127,6 +128,10 @@ pub(crate) struct JointTrees {
     /// Per figure root (a body slot): a joint outside the trees acts on the figure
     /// (`leave_out_held_figures`).
     held: Vec<bool>,
+    /// The node ranges of the free figures (trees rooted at a body, not hung from the ground).
+    free_figures: Vec<std::ops::Range<usize>>,
+    /// Each free figure's centre of mass and angular momentum about it before the projection.
+    momenta: Vec<(DVec3, DVec3)>,
 }
 
 /// Whether a solver body is one of the figure's moving bodies (finite, positive mass).
@@ -147,6 +152,7 @@ impl JointTrees {
     /// No trees this step: every joint is solved row by row.
     pub fn clear(&mut self, joints: &mut SlotPool<Joint>) {
         self.nodes.clear();
+        self.free_figures.clear();
         self.key.clear();
         for (_, joint) in joints.iter_mut() {
             joint.in_tree = false;
@@ -198,6 +204,7 @@ impl JointTrees {
         }
         std::mem::swap(&mut self.key, &mut self.next_key);
         self.nodes.clear();
+        self.free_figures.clear();
         self.breadth_first.clear();
         if self.tree_joints.is_empty() {
             return;
@@ -274,6 +281,17 @@ impl JointTrees {
                 let children = &mut self.nodes[parent as usize].body_children;
                 let free = if children[0] == NONE { 0 } else { 1 };
                 children[free] = i as u32;
+            }
+        }
+        // A tree's nodes are contiguous, its root last; a root that is a body is a free figure.
+        self.free_figures.clear();
+        let mut start = 0;
+        for (i, node) in self.nodes.iter().enumerate() {
+            if node.parent == NONE {
+                if matches!(node.kind, NodeKind::Body { .. }) {
+                    self.free_figures.push(start..i + 1);
+                }
+                start = i + 1;
             }
         }
     }
@@ -415,10 +433,19 @@ impl JointTrees {
     /// refactoring, and is not counted. A step that leaves the largest error larger than it was
     /// is halved (up to [`MAX_HALVINGS`] times): far from the constraint surface a full step can
     /// overshoot, and a projection that makes things worse feeds a diverging loop.
+    ///
+    /// Moving bodies without touching their velocities changes a figure's angular momentum by
+    /// `Σ m Δx × v` and the turn of its inertias: the drift the projection takes out is mostly
+    /// centripetal (the anchors of a spinning figure fly outward along straight lines), and a
+    /// free six-link chain spinning in zero gravity lost 0.37% of its angular momentum in ten
+    /// seconds. So each free figure (one not hung from the ground) gets back the angular momentum
+    /// it had before, as a rigid spin of the whole figure about its centre of mass, which leaves
+    /// its joints' rows as they were (`restore_angular_momentum`).
     pub fn project_positions(
         &mut self,
         joints: &SlotPool<Joint>,
         bodies: &mut [SolverBody],
+        world_bodies: &SlotPool<Body>,
         tolerance: f64,
         max_iterations: u32,
         h: f64,
@@ -426,6 +453,113 @@ impl JointTrees {
         if self.nodes.is_empty() {
             return;
         }
+        let mut momenta = std::mem::take(&mut self.momenta);
+        momenta.clear();
+        for figure in &self.free_figures {
+            let centre = self.figure_centre(figure.clone(), bodies, world_bodies);
+            momenta.push((centre, self.figure_momentum(figure.clone(), centre, bodies, world_bodies)));
+        }
+        self.project(joints, bodies, tolerance, max_iterations, h);
+        for (figure, &(centre, before)) in self.free_figures.iter().zip(&momenta) {
+            self.restore_angular_momentum(figure.clone(), centre, before, bodies, world_bodies);
+        }
+        self.momenta = momenta;
+    }
+
+    /// The body nodes of a figure: (slot, position now).
+    fn figure_bodies<'a>(
+        &'a self,
+        figure: std::ops::Range<usize>,
+        bodies: &'a [SolverBody],
+        world_bodies: &'a SlotPool<Body>,
+    ) -> impl Iterator<Item = (usize, DVec3)> + 'a {
+        self.nodes[figure].iter().filter_map(move |node| match node.kind {
+            NodeKind::Body { slot } => {
+                let start = world_bodies.iter_slot(slot as usize).expect("tree bodies are live").com_world();
+                Some((slot as usize, start + bodies[slot as usize].dp))
+            }
+            NodeKind::Joint { .. } => None,
+        })
+    }
+
+    /// A figure's centre of mass now (which the projection keeps: `Σ m Δx = 0`).
+    fn figure_centre(
+        &self,
+        figure: std::ops::Range<usize>,
+        bodies: &[SolverBody],
+        world_bodies: &SlotPool<Body>,
+    ) -> DVec3 {
+        let (weighted, mass) =
+            self.figure_bodies(figure, bodies, world_bodies).fold((DVec3::ZERO, 0.0), |(w, m), (slot, x)| {
+                let mass = 1.0 / bodies[slot].inv_mass;
+                (w + mass * x, m + mass)
+            });
+        weighted / mass
+    }
+
+    /// A figure's angular momentum about `centre`.
+    fn figure_momentum(
+        &self,
+        figure: std::ops::Range<usize>,
+        centre: DVec3,
+        bodies: &[SolverBody],
+        world_bodies: &SlotPool<Body>,
+    ) -> DVec3 {
+        self.figure_bodies(figure, bodies, world_bodies)
+            .map(|(slot, x)| {
+                let body = &bodies[slot];
+                let (mass, inertia) = body.mass_matrix().expect("tree bodies have a mass matrix");
+                mass * (x - centre).cross(body.v) + inertia * body.w
+            })
+            .sum()
+    }
+
+    /// Gives a free figure back the angular momentum `before` (about its centre of mass `centre`)
+    /// by spinning it as one rigid body by `δω = I⁻¹ (L_before − L_now)`, `I` the figure's inertia
+    /// about its centre: every body gets `δω × r` and `δω`. A rigid spin keeps the figure's
+    /// momentum and changes no joint's relative velocity (up to `δω × C`, `C` the joint's
+    /// remaining error, within the projection's tolerance).
+    fn restore_angular_momentum(
+        &self,
+        figure: std::ops::Range<usize>,
+        centre: DVec3,
+        before: DVec3,
+        bodies: &mut [SolverBody],
+        world_bodies: &SlotPool<Body>,
+    ) {
+        let lost = before - self.figure_momentum(figure.clone(), centre, bodies, world_bodies);
+        if lost == DVec3::ZERO {
+            return;
+        }
+        let mut inertia = DMat3::ZERO;
+        for (slot, x) in self.figure_bodies(figure.clone(), bodies, world_bodies) {
+            let (mass, own) = bodies[slot].mass_matrix().expect("tree bodies have a mass matrix");
+            let r = x - centre;
+            inertia += own + mass * (DMat3::from_diagonal(DVec3::splat(r.length_squared())) - outer(r, r));
+        }
+        let spin = inertia.inverse() * lost;
+        if !spin.is_finite() {
+            return;
+        }
+        for node in &self.nodes[figure] {
+            if let NodeKind::Body { slot } = node.kind {
+                let start = world_bodies.iter_slot(slot as usize).expect("tree bodies are live").com_world();
+                let body = &mut bodies[slot as usize];
+                body.v += spin.cross(start + body.dp - centre);
+                body.w += spin;
+            }
+        }
+    }
+
+    /// The projection itself (see `project_positions`).
+    fn project(
+        &mut self,
+        joints: &SlotPool<Joint>,
+        bodies: &mut [SolverBody],
+        tolerance: f64,
+        max_iterations: u32,
+        h: f64,
+    ) {
         let turned = |node: &Node| match node.kind {
             NodeKind::Body { slot } => h * bodies[slot as usize].w.length(),
             NodeKind::Joint { .. } => 0.0,
@@ -622,6 +756,11 @@ impl JointTrees {
             }
         }
     }
+}
+
+/// `u vᵀ`.
+fn outer(u: DVec3, v: DVec3) -> DMat3 {
+    DMat3::from_cols(u * v.x, u * v.y, u * v.z)
 }
 
 fn joints_slot_mut(joints: &mut SlotPool<Joint>, slot: u32) -> &mut Joint {

@@ -102,9 +102,11 @@ fn kept_trees_do_not_carry_a_non_finite_solve_over() {
 }
 
 /// A free figure (no joint to the ground) pulled apart by centimetres and turned: the
-/// projection puts every joint back within the tolerance, leaves the velocities alone, and
-/// keeps the figure's centre of mass where it was (the joints' linear rows push its bodies
-/// equally and oppositely, so `Σ m Δx = 0` in every Newton step).
+/// projection puts every joint back within the tolerance, keeps the figure's centre of mass
+/// where it was (the joints' linear rows push its bodies equally and oppositely, so `Σ m Δx = 0`
+/// in every Newton step) and its momentum, and gives it back the angular momentum the moves took
+/// as one rigid spin of the whole figure: every body's `ω` changes by the same `δω`, so no
+/// joint's relative velocity changes.
 #[test]
 fn projection_closes_the_joints_and_keeps_the_centre_of_mass() {
     let mut world = World::new(Default::default()).unwrap();
@@ -169,17 +171,35 @@ fn projection_closes_the_joints_and_keeps_the_centre_of_mass() {
             })
             .fold(0.0, f64::max)
     };
+    // Momentum, and angular momentum about the (kept) centre of mass.
+    let momenta = |bodies: &[SolverBody]| {
+        let c = centre(bodies);
+        ids.iter().fold((DVec3::ZERO, DVec3::ZERO), |(p, l), &id| {
+            let body = &bodies[id.index()];
+            let (m, inertia) = body.mass_matrix().unwrap();
+            let x = world.bodies.get(id.into()).unwrap().com_world() + body.dp;
+            (p + m * body.v, l + m * (x - c).cross(body.v) + inertia * body.w)
+        })
+    };
     let (centre_before, error_before) = (centre(&bodies), largest_error(&bodies));
-    let velocities: Vec<_> = bodies.iter().map(|b| (b.v, b.w)).collect();
+    let ((p_before, l_before), spins) = (momenta(&bodies), bodies.iter().map(|b| b.w).collect::<Vec<_>>());
     assert!(error_before > 0.02, "the figure starts apart: {error_before}");
 
     let tolerance = 1e-9;
-    trees.project_positions(&world.joints, &mut bodies, tolerance, 8, ctx.h);
+    trees.project_positions(&world.joints, &mut bodies, &world.bodies, tolerance, 8, ctx.h);
     let error_after = largest_error(&bodies);
     assert!(error_after <= tolerance, "largest error {error_before:e} -> {error_after:e}");
     let moved = (centre(&bodies) - centre_before).length();
     assert!(moved < 1e-14, "the centre of mass moved by {moved:e} m");
-    assert!(bodies.iter().zip(&velocities).all(|(b, &(v, w))| b.v == v && b.w == w));
+    let (p_after, l_after) = momenta(&bodies);
+    assert!((p_after - p_before).length() < 1e-13 * p_before.length(), "{p_before} -> {p_after}");
+    assert!((l_after - l_before).length() < 1e-12 * l_before.length(), "{l_before} -> {l_after}");
+    let spin = bodies[ids[0].index()].w - spins[ids[0].index()];
+    assert!(spin.length() > 1e-6, "the moves took some angular momentum: {spin}");
+    for &id in &ids {
+        let turned = bodies[id.index()].w - spins[id.index()];
+        assert!((turned - spin).length() < 1e-12, "one rigid spin: {turned} against {spin}");
+    }
 }
 
 /// A branching figure hung from the ground, with a loop and a second joint to the ground: the
