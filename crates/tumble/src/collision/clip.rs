@@ -56,12 +56,14 @@ impl ClipVertex {
 }
 
 /// Keeps the part of `poly` on the negative side of the plane `normal · x ≤ offset` (the side
-/// plane numbered `plane`). Works for polygons (closed loops of ≥ 3 vertices); see
-/// [`clip_segment`] for two points.
-pub fn clip_polygon(poly: &[ClipVertex], normal: DVec3, offset: f64, plane: usize) -> ClipPolygon {
+/// plane numbered `plane`), written to `out` (cleared first). Works for polygons (closed loops of
+/// ≥ 3 vertices); see [`clip_segment`] for two points. Into a buffer the caller keeps rather than
+/// a new polygon returned: a polygon on the stack is half a kilobyte, and returning one per side
+/// plane copied it each time.
+pub fn clip_polygon(poly: &[ClipVertex], normal: DVec3, offset: f64, plane: usize, out: &mut ClipPolygon) {
     let n = poly.len();
     let tolerance = SIDE_TOLERANCE * normal.length();
-    let mut out = ClipPolygon::new();
+    out.clear();
     let s = (plane & 0x7F) as u16;
     for i in 0..n {
         let a = poly[i];
@@ -81,7 +83,6 @@ pub fn clip_polygon(poly: &[ClipVertex], normal: DVec3, offset: f64, plane: usiz
             out.push(ClipVertex { point, tag, line });
         }
     }
-    out
 }
 
 /// Keeps the part of segment `seg` with `normal · x ≤ offset`; `None` if nothing is left.
@@ -124,8 +125,10 @@ pub fn clip_to_face(
     incident: &[DVec3],
     max_separation: f64,
 ) -> SmallVec<[ClippedPoint; 16]> {
-    let mut poly: ClipPolygon =
-        incident.iter().enumerate().map(|(k, &p)| ClipVertex::original(p, k)).collect();
+    // Two buffers, clipped from one into the other in turn (`current` is the one clipped last).
+    let mut buffers = [ClipPolygon::new(), ClipPolygon::new()];
+    buffers[0].extend(incident.iter().enumerate().map(|(k, &p)| ClipVertex::original(p, k)));
+    let mut current = 0;
     let m = ref_loop.len();
     for s in 0..m {
         let a = ref_loop[s];
@@ -133,25 +136,35 @@ pub fn clip_to_face(
         // Outward side-plane normal of a counter-clockwise loop.
         let side = (b - a).cross(ref_normal);
         let offset = side.dot(a);
-        poly = match poly.len() {
+        let [first, second] = &mut buffers;
+        let (poly, out) = if current == 0 { (first, second) } else { (second, first) };
+        match poly.len() {
             0 => break,
             1 => {
-                if side.dot(poly[0].point) <= offset + SIDE_TOLERANCE * side.length() {
-                    poly
-                } else {
-                    ClipPolygon::new()
+                if side.dot(poly[0].point) > offset + SIDE_TOLERANCE * side.length() {
+                    poly.clear();
+                }
+                continue; // kept (or emptied) in place
+            }
+            2 => {
+                out.clear();
+                if let Some(seg) = clip_segment([poly[0], poly[1]], side, offset, s) {
+                    out.extend(seg);
                 }
             }
-            2 => clip_segment([poly[0], poly[1]], side, offset, s)
-                .map_or(ClipPolygon::new(), |seg| seg.into_iter().collect()),
-            _ => clip_polygon(&poly, side, offset, s),
-        };
+            _ => clip_polygon(poly, side, offset, s, out),
+        }
+        current = 1 - current;
     }
     let plane = ref_normal.dot(ref_loop[0]);
-    poly.iter()
-        .map(|v| ClippedPoint { point: v.point, separation: ref_normal.dot(v.point) - plane, tag: v.tag })
-        .filter(|c| c.separation <= max_separation)
-        .collect()
+    let mut clipped = SmallVec::new();
+    clipped.extend(
+        buffers[current]
+            .iter()
+            .map(|v| ClippedPoint { point: v.point, separation: ref_normal.dot(v.point) - plane, tag: v.tag })
+            .filter(|c| c.separation <= max_separation),
+    );
+    clipped
 }
 
 #[cfg(test)]

@@ -93,10 +93,12 @@ impl<'p, 'h> Frames<'p, 'h> {
     /// Maps all of B's vertices and face normals (once; the queries read them from the lists),
     /// each by `vertex_b` and `normal_b` themselves: mapped alone or in the lists, the same bits.
     fn map_all(&mut self) {
+        // Filled in place: collected into new lists and moved here, the lists (most of a
+        // kilobyte each on the stack) would be copied whole.
         if self.verts_b.is_empty() {
-            let verts_b = (0..self.b.vertex_count()).map(|i| self.vertex_b(i)).collect();
-            let normals_b = (0..self.b.face_count()).map(|f| self.normal_b(f)).collect();
-            (self.verts_b, self.normals_b) = (verts_b, normals_b);
+            let (b, b_in_a) = (self.b, self.b_in_a);
+            self.verts_b.extend((0..b.vertex_count()).map(|i| b_in_a.transform_point(b.vertex(i))));
+            self.normals_b.extend((0..b.face_count()).map(|f| b_in_a.rotation * b.face_normal(f)));
         }
     }
 
@@ -194,37 +196,30 @@ impl<'p, 'h> Frames<'p, 'h> {
         // The Minkowski-face test of an edge pair reads four products of one edge's direction
         // with the normals of the other's two faces (faces[0].normal × faces[1].normal points
         // along the edge; B's normals are negated for the difference A − B, which flips no sign
-        // that matters). Each product is one face normal of a shape against one edge direction
-        // of the other: tabulated once, `F_A·E_B + E_A·F_B` of them instead of `4·E_A·E_B`, so
-        // the E_A × E_B loop only looks them up.
+        // that matters). Per edge of A, its products with B's face normals are taken once into
+        // `dir_a_on_b` (they also give B's outline seen along it); A's face normals against B's
+        // edges are taken only for the few pairs that pass the first test. (Tabulating all of
+        // them up front cost more than it saved: two kilobyte-sized tables written and copied
+        // for every query.)
         let (edges_a, edges_b) = (self.a.edges(), self.b.edges());
-        let dirs_a: SmallVec<[DVec3; 32]> = edges_a.iter().map(|e| self.edge_a(e).1).collect();
-        let dirs_b: SmallVec<[DVec3; 32]> = edges_b.iter().map(|e| self.edge_b(e).1).collect();
-        let (faces_a, faces_b, count_b) = (self.a.face_count(), self.normals_b.len(), edges_b.len());
-        // `normals_a_dirs_b[f·E_B + j]` = A's face normal f · B's edge j.
-        let mut normals_a_dirs_b: SmallVec<[f64; 512]> = SmallVec::with_capacity(faces_a * count_b);
-        for f in 0..faces_a {
-            let n = self.a.face_normal(f);
-            normals_a_dirs_b.extend(dirs_b.iter().map(|d| n.dot(*d)));
-        }
-        // `dirs_a_normals_b[i·F_B + g]` = B's face normal g · A's edge i.
-        let mut dirs_a_normals_b: SmallVec<[f64; 512]> = SmallVec::with_capacity(dirs_a.len() * faces_b);
-        for d in &dirs_a {
-            dirs_a_normals_b.extend(self.normals_b.iter().map(|n| n.dot(*d)));
-        }
+        let mut dirs_a: SmallVec<[DVec3; 32]> = SmallVec::new();
+        dirs_a.extend(edges_a.iter().map(|e| self.edge_a(e).1));
+        let mut dirs_b: SmallVec<[DVec3; 32]> = SmallVec::new();
+        dirs_b.extend(edges_b.iter().map(|e| self.edge_b(e).1));
+        let mut dir_a_on_b: SmallVec<[f64; 64]> = SmallVec::new();
         let centre_a = self.a.interior_point();
         let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
         // The first sign test (`cba·dba < 0`: B's edge lies on B's outline seen along A's edge)
         // passes few of B's edges, and as a branch per pair it is mispredicted often. Where B has
         // at most 128 edges, each face of B marks its edges in a bit set; the edges on the outline
         // seen along an A edge are then those with exactly one face the A edge points away from
-        // (the sign bits of `dirs_a_normals_b`): the exclusive or of those faces' sets, a few bit
+        // (the sign bits of `dir_a_on_b`): the exclusive or of those faces' sets, a few bit
         // operations per face in place of a branch per edge. Only the edges in it take the exact
         // tests below, in the same order, so the same pairs pass and the same one wins (a product
         // below zero has factors of opposite sign bits: the set holds every edge that can pass).
         let mut face_edges_b: SmallVec<[u128; 32]> = SmallVec::new();
         if sets {
-            face_edges_b.resize(faces_b, 0);
+            face_edges_b.resize(self.normals_b.len(), 0);
             for (ib, eb) in edges_b.iter().enumerate() {
                 for f in eb.faces {
                     face_edges_b[f as usize] |= 1 << ib;
@@ -232,17 +227,16 @@ impl<'p, 'h> Frames<'p, 'h> {
             }
         }
         for (ia, ea) in edges_a.iter().enumerate() {
-            let [f0, f1] = ea.faces.map(|f| f as usize);
-            let u_a = &normals_a_dirs_b[f0 * count_b..][..count_b];
-            let v_a = &normals_a_dirs_b[f1 * count_b..][..count_b];
-            let dir_a_on_b = &dirs_a_normals_b[ia * faces_b..][..faces_b];
+            let [f0, f1] = ea.faces.map(|f| self.a.face_normal(f as usize));
+            dir_a_on_b.clear();
+            dir_a_on_b.extend(self.normals_b.iter().map(|n| n.dot(dirs_a[ia])));
             let mut test = |ib: usize, eb: &HullEdge| {
                 let cba = dir_a_on_b[eb.faces[0] as usize];
                 let dba = dir_a_on_b[eb.faces[1] as usize];
                 if cba * dba >= 0.0 {
                     return;
                 }
-                let (adc, bdc) = (u_a[ib], v_a[ib]);
+                let (adc, bdc) = (f0.dot(dirs_b[ib]), f1.dot(dirs_b[ib]));
                 if !(adc * bdc < 0.0 && cba * bdc < 0.0) {
                     return;
                 }
@@ -414,13 +408,16 @@ fn face_contact(
     let n_ref = reference.face_normal(ref_face);
     // The incident face is the one most anti-parallel to the reference normal.
     let inc_face = incident.best_face(-(inc_in_ref.rotation.inverse() * n_ref));
-    let ref_loop: SmallVec<[DVec3; 16]> =
-        reference.face_vertices(ref_face).iter().map(|&v| reference.vertex(v as usize)).collect();
-    let inc_poly: SmallVec<[DVec3; 16]> = incident
-        .face_vertices(inc_face)
-        .iter()
-        .map(|&v| inc_in_ref.transform_point(incident.vertex(v as usize)))
-        .collect();
+    // The lists are filled in place: collected and moved, each would be copied whole.
+    let mut ref_loop: SmallVec<[DVec3; 16]> = SmallVec::new();
+    ref_loop.extend(reference.face_vertices(ref_face).iter().map(|&v| reference.vertex(v as usize)));
+    let mut inc_poly: SmallVec<[DVec3; 16]> = SmallVec::new();
+    inc_poly.extend(
+        incident
+            .face_vertices(inc_face)
+            .iter()
+            .map(|&v| inc_in_ref.transform_point(incident.vertex(v as usize))),
+    );
     let clipped = clip_to_face(&ref_loop, n_ref, &inc_poly, margin);
     if clipped.is_empty() {
         return None;
@@ -431,13 +428,11 @@ fn face_contact(
     let face_bits = (u32::from(reference_is_b) << 30)
         | ((ref_face as u32 & 0x7F) << 23)
         | ((inc_face as u32 & 0x7F) << 16);
-    let candidates: SmallVec<[ContactPoint; 16]> = clipped
-        .iter()
-        .map(|c| {
-            let mid = ref_pose.transform_point(c.point - n_ref * (0.5 * c.separation));
-            ContactPoint::new(pose_a, pose_b, normal_world, mid, c.separation, face_bits | u32::from(c.tag))
-        })
-        .collect();
+    let mut candidates: SmallVec<[ContactPoint; 16]> = SmallVec::new();
+    candidates.extend(clipped.iter().map(|c| {
+        let mid = ref_pose.transform_point(c.point - n_ref * (0.5 * c.separation));
+        ContactPoint::new(pose_a, pose_b, normal_world, mid, c.separation, face_bits | u32::from(c.tag))
+    }));
     Manifold::from_candidates(normal_world, &candidates)
 }
 
