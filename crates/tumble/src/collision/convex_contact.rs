@@ -150,22 +150,14 @@ impl Context<'_> {
         let bits = (u32::from(ref_is_b) << 31)
             | ((u32::from(reference.code) & 0xFF) << 23)
             | ((u32::from(incident.code) & 0x7F) << 16);
-        let candidates: SmallVec<[ContactPoint; 16]> = clipped
-            .iter()
-            .map(|c| {
-                let sep = c.separation - radius;
-                let mid = c.point - n_ref * (r_inc + 0.5 * sep);
-                let mid_world = self.pose_a.transform_point(mid);
-                ContactPoint::new(
-                    self.pose_a,
-                    self.pose_b,
-                    normal_world,
-                    mid_world,
-                    sep,
-                    bits | u32::from(c.tag),
-                )
-            })
-            .collect();
+        // Filled in place (a kilobyte and a half: collected and moved, it would be copied).
+        let mut candidates: SmallVec<[ContactPoint; 16]> = SmallVec::new();
+        candidates.extend(clipped.iter().map(|c| {
+            let sep = c.separation - radius;
+            let mid = c.point - n_ref * (r_inc + 0.5 * sep);
+            let mid_world = self.pose_a.transform_point(mid);
+            ContactPoint::new(self.pose_a, self.pose_b, normal_world, mid_world, sep, bits | u32::from(c.tag))
+        }));
         Manifold::from_candidates(normal_world, &candidates)
     }
 

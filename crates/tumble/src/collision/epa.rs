@@ -62,7 +62,11 @@ const REL_TOLERANCE: f64 = 1e-7;
 pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
     let scale = pair.scale();
     let tol = REL_TOLERANCE * scale;
-    let mut verts = blow_up(pair, simplex, 1e-9 * scale)?;
+    // Filled in place: the list is two kilobytes on the stack, copied whole when returned.
+    let mut verts = Vertices::new();
+    if !blow_up(pair, simplex, 1e-9 * scale, &mut verts) {
+        return None;
+    }
 
     // Wind the tetrahedron so each face normal points away from the opposite vertex.
     let n012 = (verts[1].w - verts[0].w).cross(verts[2].w - verts[0].w);
@@ -71,7 +75,8 @@ pub fn epa(pair: &ConvexPair, simplex: &Simplex) -> Option<EpaResult> {
     }
     let mut edge_owner = EDGE_OWNERS.take();
     edge_owner.clear();
-    let mut poly = Polytope { edge_owner, ..Default::default() };
+    let mut poly = Polytope::default();
+    poly.edge_owner = edge_owner;
     for v in [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]] {
         poly.add_face(&verts, v);
     }
@@ -190,9 +195,9 @@ fn barycentric(p: DVec3, t: [DVec3; 3]) -> [f64; 3] {
 }
 
 /// Grows GJK's simplex to a tetrahedron of non-zero volume that still contains the origin (on its
-/// boundary at worst), using extra support points.
-fn blow_up(pair: &ConvexPair, simplex: &Simplex, tol: f64) -> Option<Vertices> {
-    let mut verts = Vertices::new();
+/// boundary at worst), using extra support points, into `verts`; false when `A − B` is flat.
+fn blow_up(pair: &ConvexPair, simplex: &Simplex, tol: f64, verts: &mut Vertices) -> bool {
+    verts.clear();
     for p in simplex.as_slice() {
         if verts.iter().all(|q| (q.w - p.w).length() > tol) {
             verts.push(*p);
@@ -240,7 +245,7 @@ fn blow_up(pair: &ConvexPair, simplex: &Simplex, tol: f64) -> Option<Vertices> {
             }
         }
     }
-    (verts.len() == 4).then_some(verts)
+    verts.len() == 4
 }
 
 #[cfg(test)]

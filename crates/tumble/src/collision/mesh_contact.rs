@@ -88,7 +88,7 @@ pub fn collide_triangles_convex<S: TriangleSource + ?Sized>(
     for &t in &triangles {
         triangle_contact(source, t, &rounded, &b_in_a, &frame, margin, &mut candidates);
     }
-    build_manifold(candidates, pose_a, pose_b, margin)
+    build_manifold(&mut candidates, pose_a, pose_b, margin)
 }
 
 /// The shape's rotation in the mesh frame as matrices (cheaper than quaternions for the many
@@ -301,8 +301,9 @@ fn triangle_id(t: u32, local: u32) -> u32 {
 }
 
 /// One manifold from all candidates (mesh frame) — see the module docs.
+/// `candidates` are taken by reference: two kilobytes on the stack, copied whole when moved.
 fn build_manifold(
-    mut candidates: Candidates,
+    candidates: &mut Candidates,
     pose_a: &Transform,
     pose_b: &Transform,
     margin: f64,
@@ -319,7 +320,7 @@ fn build_manifold(
     candidates.dedup_by_key(|c| c.id);
     let normal_world = pose_a.rotation * normal;
     let mut m = Manifold::new(normal_world);
-    for i in reduce(&candidates, normal) {
+    for i in reduce(candidates, normal) {
         let c = candidates[i];
         let on_b = pose_a.transform_point(c.on_b);
         let mid = on_b - normal_world * (0.5 * c.separation);
