@@ -284,7 +284,6 @@ impl JointTrees {
             }
         }
         // A tree's nodes are contiguous, its root last; a root that is a body is a free figure.
-        self.free_figures.clear();
         let mut start = 0;
         for (i, node) in self.nodes.iter().enumerate() {
             if node.parent == NONE {
@@ -437,7 +436,7 @@ impl JointTrees {
     /// Moving bodies without touching their velocities changes a figure's angular momentum by
     /// `Σ m Δx × v` and the turn of its inertias: the drift the projection takes out is mostly
     /// centripetal (the anchors of a spinning figure fly outward along straight lines), and a
-    /// free six-link chain spinning in zero gravity lost 0.37% of its angular momentum in ten
+    /// free six-link chain spinning in zero gravity lost 0.36% of its angular momentum in ten
     /// seconds. So each free figure (one not hung from the ground) gets back the angular momentum
     /// it had before, as a rigid spin of the whole figure about its centre of mass, which leaves
     /// its joints' rows as they were (`restore_angular_momentum`).
