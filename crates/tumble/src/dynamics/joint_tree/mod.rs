@@ -26,7 +26,8 @@
 //! closes a loop, stays with the row-by-row solve, as do distance joints and joints with limits,
 //! motors, springs or friction (`Joint::equality_row_count`), and every joint of a figure one of
 //! those also acts on (`leave_out_held_figures`). The rows solved here are rigid at the velocity
-//! level and drift back to `C = 0` at the rate `β` of the joint softness; warm starting, force
+//! level; their drift is taken out by the position projection (`project_positions`), or, with
+//! the projection off, fed back at the rate `β` of the joint softness. Warm starting, force
 //! reporting and breaking use the same accumulated impulses as the row-by-row parts.
 
 pub(crate) mod block;
@@ -391,8 +392,8 @@ impl JointTrees {
     }
 
     /// One exact solve of every tree's equality rows: makes each row's velocity `−β C` (`bias_rate`
-    /// β; 0 in the relax pass), updates the bodies' velocities and adds the impulses to the
-    /// joints' accumulated ones.
+    /// β; 0 in the relax pass, and in every pass while the position projection holds the trees),
+    /// updates the bodies' velocities and adds the impulses to the joints' accumulated ones.
     pub fn solve(&mut self, joints: &mut SlotPool<Joint>, bodies: &mut [SolverBody], bias_rate: f64) {
         if self.nodes.is_empty() {
             return;
