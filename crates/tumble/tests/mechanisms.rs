@@ -130,12 +130,7 @@ fn energy(world: &World) -> f64 {
     world
         .bodies()
         .filter(|(_, body)| body.kind() == BodyKind::Dynamic)
-        .map(|(_, body)| {
-            let (v, w) = (body.linear_velocity(), body.angular_velocity());
-            0.5 * body.mass() * v.length_squared()
-                + 0.5 * w.dot(body.inertia_world() * w)
-                + body.mass() * G * body.com_world().z
-        })
+        .map(|(_, body)| body.kinetic_energy() + body.mass() * G * body.com_world().z)
         .sum()
 }
 
