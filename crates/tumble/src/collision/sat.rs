@@ -65,16 +65,28 @@ const KEEP_REL_TOLERANCE: f64 = 0.05;
 /// Edges closer than this sine of an angle to parallel give no axis (their faces' normals do).
 const PARALLEL_SINE: f64 = 0.005;
 
-/// B seen from A's frame: B's vertices and face normals mapped once (`map_all`), then reused by
-/// every query. Before that, each is mapped when asked for: the early outs of
-/// `collide_polytopes` (last step's axis still separates) read one face and a vertex or two, and
-/// most pairs end there.
+/// B seen from A's frame: B's vertices, face normals and face offsets mapped once (`map_all`),
+/// with A's own read out of the polytope once, then reused by every query. Before that, each is
+/// mapped when asked for: the early outs of `collide_polytopes` (last step's axis still
+/// separates) read one face and a vertex or two, and most pairs end there.
 struct Frames<'p, 'h> {
     a: &'p Polytope<'h>,
     b: &'p Polytope<'h>,
     b_in_a: Transform,
     verts_b: SmallVec<[DVec3; 32]>,
     normals_b: SmallVec<[DVec3; 32]>,
+    offsets_b: SmallVec<[f64; 32]>,
+    /// A's vertices, face normals and offsets as flat lists: the queries' inner loops then read
+    /// arrays rather than asking the polytope (a box scales the shared unit cube's corner on
+    /// every read).
+    verts_a: SmallVec<[DVec3; 32]>,
+    normals_a: SmallVec<[DVec3; 32]>,
+    offsets_a: SmallVec<[f64; 32]>,
+    /// `normals_b`, `verts_b` and `verts_a` again by coordinate (x, y, z): a product with all of
+    /// them is then a loop the compiler runs in vector lanes (`normals_dot`, `lowest_along`).
+    normals_b_by_axis: [SmallVec<[f64; 32]>; 3],
+    verts_b_by_axis: [SmallVec<[f64; 32]>; 3],
+    verts_a_by_axis: [SmallVec<[f64; 32]>; 3],
 }
 
 impl<'p, 'h> Frames<'p, 'h> {
@@ -87,11 +99,25 @@ impl<'p, 'h> Frames<'p, 'h> {
     /// The frames with nothing of B mapped yet.
     fn unmapped(a: &'p Polytope<'h>, pose_a: &Transform, b: &'p Polytope<'h>, pose_b: &Transform) -> Self {
         let b_in_a = pose_a.inverse().mul_transform(pose_b);
-        Frames { a, b, b_in_a, verts_b: SmallVec::new(), normals_b: SmallVec::new() }
+        Frames {
+            a,
+            b,
+            b_in_a,
+            verts_b: SmallVec::new(),
+            normals_b: SmallVec::new(),
+            offsets_b: SmallVec::new(),
+            verts_a: SmallVec::new(),
+            normals_a: SmallVec::new(),
+            offsets_a: SmallVec::new(),
+            normals_b_by_axis: Default::default(),
+            verts_b_by_axis: Default::default(),
+            verts_a_by_axis: Default::default(),
+        }
     }
 
     /// Maps all of B's vertices and face normals (once; the queries read them from the lists),
-    /// each by `vertex_b` and `normal_b` themselves: mapped alone or in the lists, the same bits.
+    /// each as `vertex_b` and `normal_b` map one: mapped alone or in the lists, the same bits.
+    /// Fills A's lists and the lists by coordinate too.
     fn map_all(&mut self) {
         // Filled in place: collected into new lists and moved here, the lists (most of a
         // kilobyte each on the stack) would be copied whole.
@@ -99,6 +125,21 @@ impl<'p, 'h> Frames<'p, 'h> {
             let (b, b_in_a) = (self.b, self.b_in_a);
             self.verts_b.extend((0..b.vertex_count()).map(|i| b_in_a.transform_point(b.vertex(i))));
             self.normals_b.extend((0..b.face_count()).map(|f| b_in_a.rotation * b.face_normal(f)));
+            // n_A · (R p + t) = n_B · p + n_A · t for p on B's face.
+            self.offsets_b.extend(
+                self.normals_b.iter().enumerate().map(|(f, n)| b.face_offset(f) + n.dot(b_in_a.translation)),
+            );
+            for axis in 0..3 {
+                self.normals_b_by_axis[axis].extend(self.normals_b.iter().map(|n| n[axis]));
+                self.verts_b_by_axis[axis].extend(self.verts_b.iter().map(|v| v[axis]));
+            }
+            let a = self.a;
+            self.verts_a.extend((0..a.vertex_count()).map(|i| a.vertex(i)));
+            self.normals_a.extend((0..a.face_count()).map(|f| a.face_normal(f)));
+            self.offsets_a.extend((0..a.face_count()).map(|f| a.face_offset(f)));
+            for axis in 0..3 {
+                self.verts_a_by_axis[axis].extend(self.verts_a.iter().map(|v| v[axis]));
+            }
         }
     }
 
@@ -139,6 +180,20 @@ impl<'p, 'h> Frames<'p, 'h> {
         let n = self.normal_b(f);
         let on_face = self.vertex_b(self.b.face_vertices(f)[0] as usize);
         n.dot(self.a.vertex(self.a.support_index(-n)) - on_face)
+    }
+
+    /// `face_a` once mapped: B's lowest mapped vertex along the face normal, less the offset.
+    /// (Over the mapped vertices, the lowest is found without turning the normal into B's frame
+    /// first; it may differ from `face_a`'s in the last bits.)
+    #[inline]
+    fn face_a_mapped(&self, f: usize) -> f64 {
+        lowest_along(&self.verts_b_by_axis, self.normals_a[f]) - self.offsets_a[f]
+    }
+
+    /// `face_b` once mapped: A's lowest vertex along B's face normal, less that face's offset.
+    #[inline]
+    fn face_b_mapped(&self, f: usize) -> f64 {
+        lowest_along(&self.verts_a_by_axis, self.normals_b[f]) - self.offsets_b[f]
     }
 
     /// An edge of A: its start and its direction (end − start), in A's frame.
@@ -185,11 +240,11 @@ impl<'p, 'h> Frames<'p, 'h> {
             }
             best
         };
-        let face_a = best(self.a.face_count(), &|f| self.face_a(f));
+        let face_a = best(self.normals_a.len(), &|f| self.face_a_mapped(f));
         if face_a.1 > margin {
             return Err((SatFeature::FaceA(face_a.0 as u32), face_a.1));
         }
-        let face_b = best(self.b.face_count(), &|f| self.face_b(f));
+        let face_b = best(self.normals_b.len(), &|f| self.face_b_mapped(f));
         if face_b.1 > margin {
             return Err((SatFeature::FaceB(face_b.0 as u32), face_b.1));
         }
@@ -203,10 +258,15 @@ impl<'p, 'h> Frames<'p, 'h> {
         // for every query.)
         let (edges_a, edges_b) = (self.a.edges(), self.b.edges());
         let mut dirs_a: SmallVec<[DVec3; 32]> = SmallVec::new();
-        dirs_a.extend(edges_a.iter().map(|e| self.edge_a(e).1));
+        dirs_a.extend(
+            edges_a
+                .iter()
+                .map(|e| self.verts_a[e.vertices[1] as usize] - self.verts_a[e.vertices[0] as usize]),
+        );
         let mut dirs_b: SmallVec<[DVec3; 32]> = SmallVec::new();
         dirs_b.extend(edges_b.iter().map(|e| self.edge_b(e).1));
         let mut dir_a_on_b: SmallVec<[f64; 64]> = SmallVec::new();
+        dir_a_on_b.resize(self.normals_b.len(), 0.0);
         let centre_a = self.a.interior_point();
         let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
         // The first sign test (`cba·dba < 0`: B's edge lies on B's outline seen along A's edge)
@@ -226,45 +286,103 @@ impl<'p, 'h> Frames<'p, 'h> {
                 }
             }
         }
+        let mut passing: SmallVec<[u32; 128]> = SmallVec::new();
+        passing.resize(edges_b.len(), 0);
         for (ia, ea) in edges_a.iter().enumerate() {
-            let [f0, f1] = ea.faces.map(|f| self.a.face_normal(f as usize));
-            dir_a_on_b.clear();
-            dir_a_on_b.extend(self.normals_b.iter().map(|n| n.dot(dirs_a[ia])));
-            let mut test = |ib: usize, eb: &HullEdge| {
+            let [f0, f1] = ea.faces.map(|f| self.normals_a[f as usize]);
+            normals_dot(&self.normals_b_by_axis, dirs_a[ia], &mut dir_a_on_b);
+            let candidates = if sets {
+                EdgeCandidates::Set(dir_a_on_b.iter().zip(&face_edges_b).fold(0u128, |set, (d, edges)| {
+                    set ^ (edges & 0u128.wrapping_sub(u128::from(d.is_sign_negative())))
+                }))
+            } else {
+                EdgeCandidates::All(0..edges_b.len())
+            };
+            // The sign tests pass a pair or two per edge of A, unpredictably: as branches they
+            // are mispredicted often. Each pair's outcome is written instead (the index always,
+            // the count advanced only on a pass), and only the pairs that passed measure their
+            // axis, in the same order.
+            let mut passed = 0;
+            for ib in candidates {
+                let eb = &edges_b[ib];
                 let cba = dir_a_on_b[eb.faces[0] as usize];
                 let dba = dir_a_on_b[eb.faces[1] as usize];
-                if cba * dba >= 0.0 {
-                    return;
-                }
                 let (adc, bdc) = (f0.dot(dirs_b[ib]), f1.dot(dirs_b[ib]));
-                if !(adc * bdc < 0.0 && cba * bdc < 0.0) {
-                    return;
-                }
-                let start_a = self.a.vertex(ea.vertices[0] as usize);
-                let start_b = self.verts_b[eb.vertices[0] as usize];
+                passing[passed] = ib as u32;
+                passed += usize::from((cba * dba < 0.0) & (adc * bdc < 0.0) & (cba * bdc < 0.0));
+            }
+            let start_a = self.verts_a[ea.vertices[0] as usize];
+            for &ib in &passing[..passed] {
+                let ib = ib as usize;
+                let start_b = self.verts_b[edges_b[ib].vertices[0] as usize];
                 if let Some((sep, n)) = edge_axis(start_a, dirs_a[ia], start_b, dirs_b[ib], centre_a) {
                     if sep > edges.2 {
                         edges = (ia, ib, sep, n);
                     }
                 }
-            };
-            if sets {
-                let mut outline = dir_a_on_b.iter().zip(&face_edges_b).fold(0u128, |set, (d, edges)| {
-                    set ^ (edges & 0u128.wrapping_sub(u128::from(d.is_sign_negative())))
-                });
-                while outline != 0 {
-                    let ib = outline.trailing_zeros() as usize;
-                    outline &= outline - 1;
-                    test(ib, &edges_b[ib]);
-                }
-            } else {
-                for (ib, eb) in edges_b.iter().enumerate() {
-                    test(ib, eb);
-                }
             }
         }
         Ok(SatQuery { face_a, face_b, edges })
     }
+}
+
+/// The edges of B a query tests against one edge of A, in increasing order: those in a bit set
+/// (B's outline seen along the A edge), or all of them.
+enum EdgeCandidates {
+    Set(u128),
+    All(std::ops::Range<usize>),
+}
+
+impl Iterator for EdgeCandidates {
+    type Item = usize;
+
+    #[inline]
+    fn next(&mut self) -> Option<usize> {
+        match self {
+            EdgeCandidates::Set(set) if *set == 0 => None,
+            EdgeCandidates::Set(set) => {
+                let i = set.trailing_zeros() as usize;
+                *set &= *set - 1;
+                Some(i)
+            }
+            EdgeCandidates::All(range) => range.next(),
+        }
+    }
+}
+
+/// `out[j] = n_j · d` for the normals given by coordinate (`[xs, ys, zs]`), in the order of
+/// `DVec3::dot` (the same bits).
+#[inline]
+fn normals_dot(normals_by_axis: &[SmallVec<[f64; 32]>; 3], d: DVec3, out: &mut [f64]) {
+    let count = out.len();
+    let (xs, ys, zs) =
+        (&normals_by_axis[0][..count], &normals_by_axis[1][..count], &normals_by_axis[2][..count]);
+    for j in 0..count {
+        out[j] = xs[j] * d.x + ys[j] * d.y + zs[j] * d.z;
+    }
+}
+
+/// The least of `n · p` over the points (given by coordinate, `[xs, ys, zs]`). Four running
+/// minima, one per vector lane, then the least of them: a minimum does not depend on the order.
+#[inline]
+fn lowest_along(points_by_axis: &[SmallVec<[f64; 32]>; 3], n: DVec3) -> f64 {
+    let count = points_by_axis[0].len();
+    let (xs, ys, zs) =
+        (&points_by_axis[0][..count], &points_by_axis[1][..count], &points_by_axis[2][..count]);
+    let dot = |j: usize| xs[j] * n.x + ys[j] * n.y + zs[j] * n.z;
+    let mut low = [f64::INFINITY; 4];
+    let whole = count - count % 4;
+    for start in (0..whole).step_by(4) {
+        for (lane, low) in low.iter_mut().enumerate() {
+            let d = dot(start + lane);
+            *low = if d < *low { d } else { *low };
+        }
+    }
+    for (j, low) in (whole..count).zip(&mut low) {
+        let d = dot(j);
+        *low = if d < *low { d } else { *low };
+    }
+    low[0].min(low[1]).min(low[2].min(low[3]))
 }
 
 /// Separation of two edges along their common normal, oriented out of A (away from A's
