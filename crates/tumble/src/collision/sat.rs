@@ -20,6 +20,7 @@ use super::manifold::{ContactPoint, Manifold};
 use super::polytope::Polytope;
 use super::segment::closest_segment_segment;
 use smallvec::SmallVec;
+use std::cell::Cell;
 
 use crate::math::{DVec3, Transform};
 use crate::shape::HullEdge;
@@ -73,20 +74,60 @@ struct Frames<'p, 'h> {
     a: &'p Polytope<'h>,
     b: &'p Polytope<'h>,
     b_in_a: Transform,
-    verts_b: SmallVec<[DVec3; 32]>,
-    normals_b: SmallVec<[DVec3; 32]>,
-    offsets_b: SmallVec<[f64; 32]>,
-    /// A's vertices, face normals and offsets as flat lists: the queries' inner loops then read
-    /// arrays rather than asking the polytope (a box scales the shared unit cube's corner on
-    /// every read).
-    verts_a: SmallVec<[DVec3; 32]>,
-    normals_a: SmallVec<[DVec3; 32]>,
-    offsets_a: SmallVec<[f64; 32]>,
+    /// Empty until `map_all`.
+    lists: Lists,
+}
+
+/// The flat lists of a pair. Kept per thread and reused by the next pair (`SCRATCH`): held
+/// inline on the stack instead, a dozen lists of a few dozen entries made a frame of kilobytes
+/// that was copied for every pair, the early outs included.
+#[derive(Default)]
+struct Lists {
+    verts_b: Vec<DVec3>,
+    normals_b: Vec<DVec3>,
+    offsets_b: Vec<f64>,
+    /// A's vertices, face normals and offsets: the queries' inner loops then read arrays rather
+    /// than asking the polytope (a box scales the shared unit cube's corner on every read).
+    verts_a: Vec<DVec3>,
+    normals_a: Vec<DVec3>,
+    offsets_a: Vec<f64>,
     /// `normals_b`, `verts_b` and `verts_a` again by coordinate (x, y, z): a product with all of
     /// them is then a loop the compiler runs in vector lanes (`normals_dot`, `lowest_along`).
-    normals_b_by_axis: [SmallVec<[f64; 32]>; 3],
-    verts_b_by_axis: [SmallVec<[f64; 32]>; 3],
-    verts_a_by_axis: [SmallVec<[f64; 32]>; 3],
+    normals_b_by_axis: [Vec<f64>; 3],
+    verts_b_by_axis: [Vec<f64>; 3],
+    verts_a_by_axis: [Vec<f64>; 3],
+}
+
+impl Lists {
+    fn clear(&mut self) {
+        for list in [&mut self.verts_b, &mut self.normals_b, &mut self.verts_a, &mut self.normals_a] {
+            list.clear();
+        }
+        self.offsets_b.clear();
+        self.offsets_a.clear();
+        for list in self
+            .normals_b_by_axis
+            .iter_mut()
+            .chain(&mut self.verts_b_by_axis)
+            .chain(&mut self.verts_a_by_axis)
+        {
+            list.clear();
+        }
+    }
+}
+
+thread_local! {
+    /// The lists of the last full query on this thread, taken by the next (`Frames::map_all`)
+    /// and given back when its frames drop: once grown, they allocate nothing.
+    static SCRATCH: Cell<Lists> = Cell::new(Lists::default());
+}
+
+impl Drop for Frames<'_, '_> {
+    fn drop(&mut self) {
+        if self.lists.verts_b.capacity() > 0 {
+            SCRATCH.set(std::mem::take(&mut self.lists));
+        }
+    }
 }
 
 impl<'p, 'h> Frames<'p, 'h> {
@@ -99,54 +140,41 @@ impl<'p, 'h> Frames<'p, 'h> {
     /// The frames with nothing of B mapped yet.
     fn unmapped(a: &'p Polytope<'h>, pose_a: &Transform, b: &'p Polytope<'h>, pose_b: &Transform) -> Self {
         let b_in_a = pose_a.inverse().mul_transform(pose_b);
-        Frames {
-            a,
-            b,
-            b_in_a,
-            verts_b: SmallVec::new(),
-            normals_b: SmallVec::new(),
-            offsets_b: SmallVec::new(),
-            verts_a: SmallVec::new(),
-            normals_a: SmallVec::new(),
-            offsets_a: SmallVec::new(),
-            normals_b_by_axis: Default::default(),
-            verts_b_by_axis: Default::default(),
-            verts_a_by_axis: Default::default(),
-        }
+        Frames { a, b, b_in_a, lists: Lists::default() }
     }
 
     /// Maps all of B's vertices and face normals (once; the queries read them from the lists),
     /// each as `vertex_b` and `normal_b` map one: mapped alone or in the lists, the same bits.
     /// Fills A's lists and the lists by coordinate too.
     fn map_all(&mut self) {
-        // Filled in place: collected into new lists and moved here, the lists (most of a
-        // kilobyte each on the stack) would be copied whole.
-        if self.verts_b.is_empty() {
-            let (b, b_in_a) = (self.b, self.b_in_a);
-            self.verts_b.extend((0..b.vertex_count()).map(|i| b_in_a.transform_point(b.vertex(i))));
-            self.normals_b.extend((0..b.face_count()).map(|f| b_in_a.rotation * b.face_normal(f)));
-            // n_A · (R p + t) = n_B · p + n_A · t for p on B's face.
-            self.offsets_b.extend(
-                self.normals_b.iter().enumerate().map(|(f, n)| b.face_offset(f) + n.dot(b_in_a.translation)),
-            );
-            for axis in 0..3 {
-                self.normals_b_by_axis[axis].extend(self.normals_b.iter().map(|n| n[axis]));
-                self.verts_b_by_axis[axis].extend(self.verts_b.iter().map(|v| v[axis]));
-            }
-            let a = self.a;
-            self.verts_a.extend((0..a.vertex_count()).map(|i| a.vertex(i)));
-            self.normals_a.extend((0..a.face_count()).map(|f| a.face_normal(f)));
-            self.offsets_a.extend((0..a.face_count()).map(|f| a.face_offset(f)));
-            for axis in 0..3 {
-                self.verts_a_by_axis[axis].extend(self.verts_a.iter().map(|v| v[axis]));
-            }
+        if !self.lists.verts_b.is_empty() {
+            return;
         }
+        let mut lists = SCRATCH.take();
+        lists.clear();
+        let (a, b, b_in_a) = (self.a, self.b, self.b_in_a);
+        lists.verts_b.extend((0..b.vertex_count()).map(|i| b_in_a.transform_point(b.vertex(i))));
+        lists.normals_b.extend((0..b.face_count()).map(|f| b_in_a.rotation * b.face_normal(f)));
+        // n_A · (R p + t) = n_B · p + n_A · t for p on B's face.
+        let normals_b = &lists.normals_b;
+        lists
+            .offsets_b
+            .extend(normals_b.iter().enumerate().map(|(f, n)| b.face_offset(f) + n.dot(b_in_a.translation)));
+        lists.verts_a.extend((0..a.vertex_count()).map(|i| a.vertex(i)));
+        lists.normals_a.extend((0..a.face_count()).map(|f| a.face_normal(f)));
+        lists.offsets_a.extend((0..a.face_count()).map(|f| a.face_offset(f)));
+        for axis in 0..3 {
+            lists.normals_b_by_axis[axis].extend(lists.normals_b.iter().map(|n| n[axis]));
+            lists.verts_b_by_axis[axis].extend(lists.verts_b.iter().map(|v| v[axis]));
+            lists.verts_a_by_axis[axis].extend(lists.verts_a.iter().map(|v| v[axis]));
+        }
+        self.lists = lists;
     }
 
     /// B's vertex `i` in A's frame: from the list once mapped, else mapped now (the same bits).
     #[inline]
     fn vertex_b(&self, i: usize) -> DVec3 {
-        match self.verts_b.get(i) {
+        match self.lists.verts_b.get(i) {
             Some(&v) => v,
             None => self.b_in_a.transform_point(self.b.vertex(i)),
         }
@@ -155,7 +183,7 @@ impl<'p, 'h> Frames<'p, 'h> {
     /// B's face normal `f` in A's frame, as `vertex_b`.
     #[inline]
     fn normal_b(&self, f: usize) -> DVec3 {
-        match self.normals_b.get(f) {
+        match self.lists.normals_b.get(f) {
             Some(&n) => n,
             None => self.b_in_a.rotation * self.b.face_normal(f),
         }
@@ -187,13 +215,13 @@ impl<'p, 'h> Frames<'p, 'h> {
     /// first; it may differ from `face_a`'s in the last bits.)
     #[inline]
     fn face_a_mapped(&self, f: usize) -> f64 {
-        lowest_along(&self.verts_b_by_axis, self.normals_a[f]) - self.offsets_a[f]
+        lowest_along(&self.lists.verts_b_by_axis, self.lists.normals_a[f]) - self.lists.offsets_a[f]
     }
 
     /// `face_b` once mapped: A's lowest vertex along B's face normal, less that face's offset.
     #[inline]
     fn face_b_mapped(&self, f: usize) -> f64 {
-        lowest_along(&self.verts_a_by_axis, self.normals_b[f]) - self.offsets_b[f]
+        lowest_along(&self.lists.verts_a_by_axis, self.lists.normals_b[f]) - self.lists.offsets_b[f]
     }
 
     /// An edge of A: its start and its direction (end − start), in A's frame.
@@ -226,7 +254,7 @@ impl<'p, 'h> Frames<'p, 'h> {
     /// `query_within`, listing the edge pairs that pass the first sign test from bit sets of B's
     /// edges (`sets`, at most 128 edges) or testing every pair: the same result either way.
     fn query_with_sets(&self, margin: f64, sets: bool) -> Result<SatQuery, (SatFeature, f64)> {
-        debug_assert_eq!(self.normals_b.len(), self.b.face_count(), "B is mapped (`map_all`)");
+        debug_assert_eq!(self.lists.normals_b.len(), self.b.face_count(), "B is mapped (`map_all`)");
         let best = |count: usize, f: &dyn Fn(usize) -> f64| {
             let mut best = (0, f64::NEG_INFINITY);
             for i in 0..count {
@@ -240,11 +268,11 @@ impl<'p, 'h> Frames<'p, 'h> {
             }
             best
         };
-        let face_a = best(self.normals_a.len(), &|f| self.face_a_mapped(f));
+        let face_a = best(self.lists.normals_a.len(), &|f| self.face_a_mapped(f));
         if face_a.1 > margin {
             return Err((SatFeature::FaceA(face_a.0 as u32), face_a.1));
         }
-        let face_b = best(self.normals_b.len(), &|f| self.face_b_mapped(f));
+        let face_b = best(self.lists.normals_b.len(), &|f| self.face_b_mapped(f));
         if face_b.1 > margin {
             return Err((SatFeature::FaceB(face_b.0 as u32), face_b.1));
         }
@@ -258,15 +286,13 @@ impl<'p, 'h> Frames<'p, 'h> {
         // for every query.)
         let (edges_a, edges_b) = (self.a.edges(), self.b.edges());
         let mut dirs_a: SmallVec<[DVec3; 32]> = SmallVec::new();
-        dirs_a.extend(
-            edges_a
-                .iter()
-                .map(|e| self.verts_a[e.vertices[1] as usize] - self.verts_a[e.vertices[0] as usize]),
-        );
+        dirs_a.extend(edges_a.iter().map(|e| {
+            self.lists.verts_a[e.vertices[1] as usize] - self.lists.verts_a[e.vertices[0] as usize]
+        }));
         let mut dirs_b: SmallVec<[DVec3; 32]> = SmallVec::new();
         dirs_b.extend(edges_b.iter().map(|e| self.edge_b(e).1));
         let mut dir_a_on_b: SmallVec<[f64; 64]> = SmallVec::new();
-        dir_a_on_b.resize(self.normals_b.len(), 0.0);
+        dir_a_on_b.resize(self.lists.normals_b.len(), 0.0);
         let centre_a = self.a.interior_point();
         let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
         // The first sign test (`cba·dba < 0`: B's edge lies on B's outline seen along A's edge)
@@ -279,7 +305,7 @@ impl<'p, 'h> Frames<'p, 'h> {
         // below zero has factors of opposite sign bits: the set holds every edge that can pass).
         let mut face_edges_b: SmallVec<[u128; 32]> = SmallVec::new();
         if sets {
-            face_edges_b.resize(self.normals_b.len(), 0);
+            face_edges_b.resize(self.lists.normals_b.len(), 0);
             for (ib, eb) in edges_b.iter().enumerate() {
                 for f in eb.faces {
                     face_edges_b[f as usize] |= 1 << ib;
@@ -289,8 +315,8 @@ impl<'p, 'h> Frames<'p, 'h> {
         let mut passing: SmallVec<[u32; 128]> = SmallVec::new();
         passing.resize(edges_b.len(), 0);
         for (ia, ea) in edges_a.iter().enumerate() {
-            let [f0, f1] = ea.faces.map(|f| self.normals_a[f as usize]);
-            normals_dot(&self.normals_b_by_axis, dirs_a[ia], &mut dir_a_on_b);
+            let [f0, f1] = ea.faces.map(|f| self.lists.normals_a[f as usize]);
+            normals_dot(&self.lists.normals_b_by_axis, dirs_a[ia], &mut dir_a_on_b);
             let candidates = if sets {
                 EdgeCandidates::Set(dir_a_on_b.iter().zip(&face_edges_b).fold(0u128, |set, (d, edges)| {
                     set ^ (edges & 0u128.wrapping_sub(u128::from(d.is_sign_negative())))
@@ -311,10 +337,10 @@ impl<'p, 'h> Frames<'p, 'h> {
                 passing[passed] = ib as u32;
                 passed += usize::from((cba * dba < 0.0) & (adc * bdc < 0.0) & (cba * bdc < 0.0));
             }
-            let start_a = self.verts_a[ea.vertices[0] as usize];
+            let start_a = self.lists.verts_a[ea.vertices[0] as usize];
             for &ib in &passing[..passed] {
                 let ib = ib as usize;
-                let start_b = self.verts_b[edges_b[ib].vertices[0] as usize];
+                let start_b = self.lists.verts_b[edges_b[ib].vertices[0] as usize];
                 if let Some((sep, n)) = edge_axis(start_a, dirs_a[ia], start_b, dirs_b[ib], centre_a) {
                     if sep > edges.2 {
                         edges = (ia, ib, sep, n);
@@ -353,7 +379,7 @@ impl Iterator for EdgeCandidates {
 /// `out[j] = n_j · d` for the normals given by coordinate (`[xs, ys, zs]`), in the order of
 /// `DVec3::dot` (the same bits).
 #[inline]
-fn normals_dot(normals_by_axis: &[SmallVec<[f64; 32]>; 3], d: DVec3, out: &mut [f64]) {
+fn normals_dot(normals_by_axis: &[Vec<f64>; 3], d: DVec3, out: &mut [f64]) {
     let count = out.len();
     let (xs, ys, zs) =
         (&normals_by_axis[0][..count], &normals_by_axis[1][..count], &normals_by_axis[2][..count]);
@@ -365,7 +391,7 @@ fn normals_dot(normals_by_axis: &[SmallVec<[f64; 32]>; 3], d: DVec3, out: &mut [
 /// The least of `n · p` over the points (given by coordinate, `[xs, ys, zs]`). Four running
 /// minima, one per vector lane, then the least of them: a minimum does not depend on the order.
 #[inline]
-fn lowest_along(points_by_axis: &[SmallVec<[f64; 32]>; 3], n: DVec3) -> f64 {
+fn lowest_along(points_by_axis: &[Vec<f64>; 3], n: DVec3) -> f64 {
     let count = points_by_axis[0].len();
     let (xs, ys, zs) =
         (&points_by_axis[0][..count], &points_by_axis[1][..count], &points_by_axis[2][..count]);
@@ -567,7 +593,10 @@ fn edge_contact(
     let edge_b = frames.b.edges()[eb];
     let (pa, qa) =
         (frames.a.vertex(edge_a.vertices[0] as usize), frames.a.vertex(edge_a.vertices[1] as usize));
-    let (pb, qb) = (frames.verts_b[edge_b.vertices[0] as usize], frames.verts_b[edge_b.vertices[1] as usize]);
+    let (pb, qb) = (
+        frames.lists.verts_b[edge_b.vertices[0] as usize],
+        frames.lists.verts_b[edge_b.vertices[1] as usize],
+    );
     let (s, t) = closest_segment_segment(pa, qa, pb, qb);
     let ca = pa + (qa - pa) * s;
     let cb = pb + (qb - pb) * t;
