@@ -6,8 +6,10 @@
 //!    behind its plane, or when the shape's lowest point along `−n_T` is more than the margin
 //!    above it (the triangle's plane separates them). A triangle whose edges are all internal
 //!    (flat or concave neighbours) can only have its face normal, so it goes straight to the face
-//!    contact. A triangle with a convex or boundary edge first runs GJK/EPA between the triangle
-//!    and the shape's core; if the normal found passes the internal-edge rule (see
+//!    contact, and so does a triangle the shape's core lies wholly above with its lowest point
+//!    over the triangle (that point and its foot are then the closest pair, along the face
+//!    normal). A triangle with a convex or boundary edge otherwise first runs GJK/EPA between the
+//!    triangle and the shape's core; if the normal found passes the internal-edge rule (see
 //!    [`super::triangle`]) and is not the face normal, the contact is the convex–convex manifold
 //!    of the triangle and the shape (edge or vertex contact). Otherwise it is the face contact:
 //!    the shape's feature facing `−n_T` clipped to the triangle, separations from its plane (with
@@ -117,7 +119,9 @@ fn triangle_contact<S: TriangleSource + ?Sized>(
     // Farthest point of the core along a mesh-frame direction, in the mesh frame.
     let support = |dir: DVec3| b_in_a.translation + frame.rot * shape.core.support_local(frame.rot_t * dir);
     let down_local = frame.rot_t * -n_t;
-    if n_t.dot(support(-n_t) - v[0]) - shape.radius > margin {
+    let lowest = support(-n_t);
+    let height = n_t.dot(lowest - v[0]);
+    if height - shape.radius > margin {
         return;
     }
     // The triangle's edges as separating axes: the triangle lies inside each edge's in-plane
@@ -129,10 +133,21 @@ fn triangle_contact<S: TriangleSource + ?Sized>(
         }
     }
     let bends = edge_bends(source, t, &v, n_t);
-    if has_sharp_edge(&bends) && edge_contact(t, &v, n_t, &bends, shape, b_in_a, margin, out) {
+    // The core wholly above the triangle's plane with its lowest point over the triangle: that
+    // point and its foot on the triangle are the closest pair (no point of the core is lower, and
+    // the foot is on the triangle), so the normal is the face normal and GJK would only confirm
+    // it — the face contact below, whatever the edges.
+    let face_only = height > 0.0 && over_triangle(lowest, &v, n_t);
+    if !face_only && has_sharp_edge(&bends) && edge_contact(t, &v, n_t, &bends, shape, b_in_a, margin, out) {
         return;
     }
     face_contact(t, &v, n_t, shape, b_in_a, down_local, margin, out);
+}
+
+/// Does `p` lie over the triangle `v` (its foot on the plane strictly inside the triangle,
+/// corners counter-clockwise about `n_t`)?
+fn over_triangle(p: DVec3, v: &[DVec3; 3], n_t: DVec3) -> bool {
+    (0..3).all(|k| (v[(k + 1) % 3] - v[k]).cross(p - v[k]).dot(n_t) > 0.0)
 }
 
 /// GJK/EPA between the triangle and the shape. If the normal is allowed by the internal-edge rule
