@@ -99,6 +99,15 @@ const TOUCH: f64 = 1e-20;
 /// direction from A towards B in A's local frame (the centre offset is a good one, last step's
 /// contact normal a better one).
 pub fn gjk(pair: &ConvexPair, initial_dir: DVec3) -> GjkResult {
+    gjk_within(pair, initial_dir, f64::INFINITY)
+}
+
+/// `gjk`, stopping early once the cores are known to be more than `max_distance` apart: each
+/// support point `w` along `−v` bounds the distance from below by `v·w / |v|` (no point of
+/// `A − B` lies nearer the origin along `v`). The result then reports that bound as its
+/// distance (above `max_distance`, below the true one) and the closest points found so far.
+/// Within `max_distance`, the same result as `gjk`.
+pub fn gjk_within(pair: &ConvexPair, initial_dir: DVec3, max_distance: f64) -> GjkResult {
     let d0 = if initial_dir.length_squared() > 0.0 { initial_dir } else { DVec3::X };
     let mut simplex = Simplex::default();
     // The point of A − B nearest the origin lies on the side facing from A towards B.
@@ -120,6 +129,12 @@ pub fn gjk(pair: &ConvexPair, initial_dir: DVec3) -> GjkResult {
         }
         iterations += 1;
         let w = pair.support(-v);
+        let lower_bound = v.dot(w.w);
+        if lower_bound > max_distance * vv.sqrt() {
+            let (point_a, point_b) = closest_points(&simplex, &lambda);
+            let distance = lower_bound / vv.sqrt();
+            return GjkResult { distance, point_a, point_b, overlapping: false, simplex, iterations };
+        }
         // Duality gap: |v|² − v·w bounds |v|·(|v| − distance) from above.
         if vv - v.dot(w.w) <= REL_GAP * vv {
             break;
@@ -151,13 +166,19 @@ pub fn gjk(pair: &ConvexPair, initial_dir: DVec3) -> GjkResult {
         lambda = new_lambda;
         v = new_v;
     }
-    let (mut point_a, mut point_b) = (DVec3::ZERO, DVec3::ZERO);
-    for (p, l) in simplex.as_slice().iter().zip(lambda) {
-        point_a += p.a * l;
-        point_b += p.b * l;
-    }
+    let (point_a, point_b) = closest_points(&simplex, &lambda);
     let distance = if overlapping { 0.0 } else { v.length() };
     GjkResult { distance, point_a, point_b, overlapping, simplex, iterations }
+}
+
+/// The points of A and of B that the simplex's weights `lambda` give.
+fn closest_points(simplex: &Simplex, lambda: &[f64; 4]) -> (DVec3, DVec3) {
+    let (mut point_a, mut point_b) = (DVec3::ZERO, DVec3::ZERO);
+    for (p, l) in simplex.as_slice().iter().zip(lambda) {
+        point_a += p.a * *l;
+        point_b += p.b * *l;
+    }
+    (point_a, point_b)
 }
 
 /// Barycentric weights of the point of the simplex `w[..n]` closest to the origin: returns the
@@ -323,5 +344,49 @@ mod tests {
         assert!(!r.overlapping);
         assert!((r.distance - 1.5).abs() < 1e-12, "{}", r.distance);
         assert!((r.point_a.z - 1.0).abs() < 1e-12 && (r.point_b.z - 2.5).abs() < 1e-12);
+    }
+
+    /// Within `max_distance`, `gjk_within` is `gjk` bit for bit; beyond it, it may stop early,
+    /// with a distance that is above `max_distance` and at most the true one. Boxes and a triangle
+    /// against a box, at random poses and gaps.
+    #[test]
+    fn early_out_beyond_max_distance_is_a_lower_bound() {
+        let mut rng = crate::scenes::rng::SplitMix64::new(0x5eed_0f_9e3);
+        let mut unit = || rng.range(-1.0, 1.0);
+        let box_core = Core::Cuboid { half_extents: DVec3::new(0.5, 0.3, 0.2) };
+        let triangle = Core::Triangle([
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -0.5, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ]);
+        let (mut stopped_early, mut within) = (0, 0);
+        for k in 0..2000 {
+            let a = if k % 2 == 0 { box_core } else { triangle };
+            let axis = DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::Z);
+            let pose_b = Transform::new(
+                DVec3::new(unit(), unit(), unit()) * 1.2,
+                DQuat::from_axis_angle(axis, 3.2 * unit()),
+            );
+            let pair = ConvexPair::new(a, &Transform::IDENTITY, box_core, &pose_b);
+            let max_distance = 0.5 * unit().abs();
+            let full = gjk(&pair, DVec3::Z);
+            let early = gjk_within(&pair, DVec3::Z, max_distance);
+            if full.overlapping || full.distance <= max_distance {
+                within += 1;
+                assert_eq!(early.distance.to_bits(), full.distance.to_bits(), "k {k}");
+                assert_eq!(early.overlapping, full.overlapping, "k {k}");
+                assert_eq!((early.point_a, early.point_b), (full.point_a, full.point_b), "k {k}");
+            } else {
+                stopped_early += usize::from(early.iterations < full.iterations);
+                assert!(!early.overlapping && early.distance > max_distance, "k {k}");
+                assert!(
+                    early.distance <= full.distance * (1.0 + 1e-12),
+                    "k {k}: {} > {}",
+                    early.distance,
+                    full.distance
+                );
+            }
+        }
+        assert!(stopped_early > 200 && within > 200, "stopped early {stopped_early}, within {within}");
     }
 }

@@ -33,7 +33,7 @@ use super::epa::epa;
 use super::feature::{
     is_round_cap, supporting_feature, CAP_MISS, EDGE, EDGE_SIN_TOLERANCE, FACE_COS_TOLERANCE, VERTEX,
 };
-use super::gjk::{gjk, ConvexPair};
+use super::gjk::{gjk_within, ConvexPair};
 use super::manifold::{ContactPoint, Manifold};
 use super::support::{Core, Rounded};
 use super::triangle::{edge_bends, has_sharp_edge, normal_allowed, TriangleSource};
@@ -170,7 +170,7 @@ fn edge_contact(
     let tri = Rounded { core: Core::Triangle(v.map(|p| p - centroid)), radius: 0.0 };
     let tri_pose = Transform::new(centroid, crate::math::DQuat::IDENTITY);
     let pair = ConvexPair::new(tri.core, &tri_pose, shape.core, b_in_a);
-    let g = gjk(&pair, n_t);
+    let g = gjk_within(&pair, n_t, shape.radius + margin);
     if !g.overlapping && g.distance > shape.radius + margin {
         return true; // out of reach: no contact from this triangle at all
     }
