@@ -129,14 +129,15 @@ pub fn gjk_within(pair: &ConvexPair, initial_dir: DVec3, max_distance: f64) -> G
         }
         iterations += 1;
         let w = pair.support(-v);
-        let lower_bound = v.dot(w.w);
-        if lower_bound > max_distance * vv.sqrt() {
+        // v·w ≤ |v|·distance: a lower bound of the distance, and the duality gap below.
+        let v_dot_w = v.dot(w.w);
+        if v_dot_w > max_distance * vv.sqrt() {
             let (point_a, point_b) = closest_points(&simplex, &lambda);
-            let distance = lower_bound / vv.sqrt();
+            let distance = v_dot_w / vv.sqrt();
             return GjkResult { distance, point_a, point_b, overlapping: false, simplex, iterations };
         }
         // Duality gap: |v|² − v·w bounds |v|·(|v| − distance) from above.
-        if vv - v.dot(w.w) <= REL_GAP * vv {
+        if vv - v_dot_w <= REL_GAP * vv {
             break;
         }
         if simplex.as_slice().iter().any(|p| p.w == w.w) {

@@ -224,10 +224,19 @@ impl<'p, 'h> Frames<'p, 'h> {
         lowest_along(&self.lists.verts_a_by_axis, self.lists.normals_b[f]) - self.lists.offsets_b[f]
     }
 
+    /// A's vertex `i`: from the list once mapped, else from the polytope (the same bits).
+    #[inline]
+    fn vertex_a(&self, i: usize) -> DVec3 {
+        match self.lists.verts_a.get(i) {
+            Some(&v) => v,
+            None => self.a.vertex(i),
+        }
+    }
+
     /// An edge of A: its start and its direction (end − start), in A's frame.
     fn edge_a(&self, e: &HullEdge) -> (DVec3, DVec3) {
-        let start = self.a.vertex(e.vertices[0] as usize);
-        (start, self.a.vertex(e.vertices[1] as usize) - start)
+        let start = self.vertex_a(e.vertices[0] as usize);
+        (start, self.vertex_a(e.vertices[1] as usize) - start)
     }
 
     /// An edge of B: its start and its direction, in A's frame.
@@ -286,9 +295,7 @@ impl<'p, 'h> Frames<'p, 'h> {
         // for every query.)
         let (edges_a, edges_b) = (self.a.edges(), self.b.edges());
         let mut dirs_a: SmallVec<[DVec3; 32]> = SmallVec::new();
-        dirs_a.extend(edges_a.iter().map(|e| {
-            self.lists.verts_a[e.vertices[1] as usize] - self.lists.verts_a[e.vertices[0] as usize]
-        }));
+        dirs_a.extend(edges_a.iter().map(|e| self.edge_a(e).1));
         let mut dirs_b: SmallVec<[DVec3; 32]> = SmallVec::new();
         dirs_b.extend(edges_b.iter().map(|e| self.edge_b(e).1));
         let mut dir_a_on_b: SmallVec<[f64; 64]> = SmallVec::new();
@@ -384,8 +391,14 @@ fn normals_dot(normals_by_axis: &[Vec<f64>; 3], d: DVec3, out: &mut [f64]) {
     let (xs, ys, zs) =
         (&normals_by_axis[0][..count], &normals_by_axis[1][..count], &normals_by_axis[2][..count]);
     for j in 0..count {
-        out[j] = xs[j] * d.x + ys[j] * d.y + zs[j] * d.z;
+        out[j] = dot_by_axis(xs, ys, zs, j, d);
     }
+}
+
+/// `(xs[j], ys[j], zs[j]) · n`, in the order of `DVec3::dot` (the same bits).
+#[inline(always)]
+fn dot_by_axis(xs: &[f64], ys: &[f64], zs: &[f64], j: usize, n: DVec3) -> f64 {
+    xs[j] * n.x + ys[j] * n.y + zs[j] * n.z
 }
 
 /// The least of `n · p` over the points (given by coordinate, `[xs, ys, zs]`). Four running
@@ -395,7 +408,7 @@ fn lowest_along(points_by_axis: &[Vec<f64>; 3], n: DVec3) -> f64 {
     let count = points_by_axis[0].len();
     let (xs, ys, zs) =
         (&points_by_axis[0][..count], &points_by_axis[1][..count], &points_by_axis[2][..count]);
-    let dot = |j: usize| xs[j] * n.x + ys[j] * n.y + zs[j] * n.z;
+    let dot = |j: usize| dot_by_axis(xs, ys, zs, j, n);
     let mut low = [f64::INFINITY; 4];
     let whole = count - count % 4;
     for start in (0..whole).step_by(4) {
