@@ -352,7 +352,7 @@ mod tests {
     /// against a box, at random poses and gaps.
     #[test]
     fn early_out_beyond_max_distance_is_a_lower_bound() {
-        let mut rng = crate::scenes::rng::SplitMix64::new(0x5eed_0f_9e3);
+        let mut rng = crate::scenes::rng::SplitMix64::new(0x5_eed0_f9e3);
         let mut unit = || rng.range(-1.0, 1.0);
         let box_core = Core::Cuboid { half_extents: DVec3::new(0.5, 0.3, 0.2) };
         let triangle = Core::Triangle([
