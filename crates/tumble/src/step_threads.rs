@@ -83,11 +83,6 @@ impl StepThreads {
         Some(StepThreads { control })
     }
 
-    /// How many threads run each piece of work (the calling thread among them).
-    pub fn count(&self) -> usize {
-        self.control.threads
-    }
-
     /// Runs `work` on every thread, the calling thread as thread 0, and returns when all have
     /// finished it. A panic on any thread releases the others from their barriers and is passed
     /// on once all have stopped.

@@ -89,9 +89,8 @@ pub struct World {
     #[serde(skip)]
     pub(crate) contact_constraints: Vec<ContactConstraint>,
     /// Whether still contact manifolds are solved four side by side in SIMD lanes or one at a
-    /// time (contact_lanes.rs); `None` takes lanes where they pay (`GROUPS_PAY`, and up to
-    /// `GROUPS_MAX_CONTACTS_PER_THREAD`). The same numbers either way, which the tests check
-    /// with it.
+    /// time (contact_lanes.rs); `None` takes lanes where they pay (`GROUPS_PAY`). The same
+    /// numbers either way, which the tests check with it.
     #[serde(skip)]
     pub(crate) contacts_in_groups: Option<bool>,
     /// The rows of the contacts four at a time for the still manifolds' groups, written each

@@ -29,7 +29,7 @@ pub(crate) struct PatchFriction {
     /// `PointConstraint::anchors`).
     r_a_local: DVec3,
     r_b_local: DVec3,
-    /// The shared levers of the centre at the step start: used while both bodies are still, as
+    /// The shared levers of the centre at the step start: used while the pair is still, as
     /// the normal rows use theirs (contact_solver.rs, `solve_normals`).
     pub levers_start: (DVec3, DVec3),
     /// Each point's distance from the centre in the tangent plane (the twist row's lever arms).
@@ -92,7 +92,7 @@ impl PatchFriction {
     }
 
     /// The levers the friction impulse acts at now: the centre's offsets turned with the bodies
-    /// (see `PointConstraint::anchors`) and shared, or the step-start ones while both are still.
+    /// (see `PointConstraint::anchors`) and shared, or the step-start ones while the pair is still.
     #[inline]
     pub fn levers(
         &self,

@@ -1,4 +1,4 @@
-//! The rows of *still* manifolds (both bodies still, no round side: `linear_pair`), written once
+//! The rows of *still* manifolds (a still pair, no round side: `linear_pair`), written once
 //! over a lane type (`lanes.rs`) and run on one manifold (`f64`) or on four of one colour side by
 //! side (`f64x4`).
 //!

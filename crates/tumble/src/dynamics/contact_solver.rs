@@ -38,7 +38,7 @@ use crate::dynamics::contact_block::{
 use crate::dynamics::contact_friction::PatchFriction;
 use crate::dynamics::softness::Softness;
 use crate::dynamics::solver::StepContext;
-use crate::dynamics::solver_body::SolverBody;
+use crate::dynamics::solver_body::{still_pair, SolverBody};
 use crate::math::{DMat3, DVec3};
 
 /// Separation, m, up to which a row stays soft rather than speculative. A resting contact that
@@ -199,10 +199,10 @@ impl PointConstraint {
 }
 
 /// Whether a manifold's rows may be taken linear in the step-start levers (see
-/// `ContactConstraint::rows_now`): both bodies still, and no round side.
+/// `ContactConstraint::rows_now`): a still pair (`still_pair`), and no round side.
 #[inline]
 pub(crate) fn linear_pair(radii: (f64, f64), a: &SolverBody, b: &SolverBody) -> bool {
-    a.still && b.still && radii == (0.0, 0.0)
+    radii == (0.0, 0.0) && still_pair(a, b)
 }
 
 /// Material offsets `(r_a_local, r_b_local)` from the step-start surface points `r_a`, `r_b`: the
@@ -305,7 +305,7 @@ pub(crate) struct ContactConstraint {
     torsional_impulse: f64,
     /// The soft normal rows' stiffness and damping (the same for every point).
     softness: Softness,
-    /// The normal rows' `K` at the step start, used while both bodies are still (see `solve`):
+    /// The normal rows' `K` at the step start, used while the pair is still (see `solve`):
     /// the upper triangle, row by row (`K` is symmetric).
     coupling_start: [f64; COUPLING_ENTRIES],
     /// The normal rows left free (not released) by the last block solve: the next one's first

@@ -10,7 +10,7 @@ use super::{
 use crate::dynamics::contact_block::{RowSet, ALL_ROWS, MAX_POINTS};
 use crate::dynamics::contact_solver::ContactConstraint;
 use crate::dynamics::solver::StepContext;
-use crate::dynamics::solver_body::SolverBody;
+use crate::dynamics::solver_body::{still_pair, SolverBody};
 use crate::lanes::Lane;
 use wide::f64x4;
 
@@ -62,11 +62,11 @@ impl StillBlock {
         }
     }
 
-    /// Whether the four manifolds can go as a group now: each fits the lanes and both its bodies
-    /// are still.
+    /// Whether the four manifolds can go as a group now: each fits the lanes and its bodies are a
+    /// still pair (`still_pair`).
     #[inline]
     fn is_still(&self, bodies: &[&SolverBody; 2 * GROUP]) -> bool {
-        self.fits_lanes && bodies.iter().all(|body| body.still)
+        self.fits_lanes && bodies.chunks_exact(2).all(|pair| still_pair(pair[0], pair[1]))
     }
 
     /// The state of `contacts` (the block's four) into the block, unless it is here.

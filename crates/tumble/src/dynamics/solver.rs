@@ -214,12 +214,6 @@ pub(crate) const PARALLEL_MIN_CONTACTS: usize = 128;
 /// Bodies from which the body stages alone make threads worth their barriers.
 pub(crate) const PARALLEL_MIN_BODIES: usize = 1024;
 
-/// Contacts per thread up to which still manifolds are solved in groups of four (contact_lanes.rs).
-/// Beyond, the rows stream from memory, and groups ran slower than manifolds one by one: on the
-/// bench machine (1 MB of L2 per core) a pyramid of 1335 manifolds ran 1.2x faster in groups,
-/// one of 3725 about as fast, one of 5370 0.9x and one of 14950 0.85x (docs/solver.md).
-pub(crate) const GROUPS_MAX_CONTACTS_PER_THREAD: usize = 4096;
-
 /// Bodies a thread gathers at a time.
 const GATHER_CHUNK: usize = 256;
 
@@ -358,10 +352,7 @@ impl World {
         let threads = threads.filter(|_| worth_threads);
         // Still manifolds in groups of four where that pays (contact_lanes.rs); the same bits
         // either way.
-        let thread_count = threads.map_or(1, StepThreads::count);
-        let in_lanes = self
-            .contacts_in_groups
-            .unwrap_or(GROUPS_PAY && contacts.len() <= GROUPS_MAX_CONTACTS_PER_THREAD * thread_count);
+        let in_lanes = self.contacts_in_groups.unwrap_or(GROUPS_PAY);
         let mut blocks = std::mem::take(&mut self.still_blocks);
         // Each block is written over at the step's start (`fill_blocks`).
         blocks.resize_with(if in_lanes { contacts.len().div_ceil(GROUP) } else { 0 }, StillBlock::default);
