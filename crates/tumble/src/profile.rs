@@ -16,8 +16,14 @@ pub enum Phase {
     NarrowPhase,
     /// Island links from touching contacts; waking sleeping islands that awake bodies touch.
     Wake,
-    /// The constraint solve: substeps of velocities, joints, contacts and positions.
-    Solve,
+    /// The solve's set-up: the solver bodies gathered, joints and contacts prepared, the
+    /// contacts coloured, the joint trees built.
+    SolveSetUp,
+    /// The solve's substeps: velocities, joints, contacts and positions.
+    Substeps,
+    /// After the substeps: impulses kept for the next step's warm start, joint forces, the
+    /// bodies written back (and their proxies' moves planned), non-finite bodies isolated.
+    SolveStore,
     /// Sweeping bullets against static geometry and moving back those that went through.
     Continuous,
     /// Moving the proxies to the solved poses, so queries between steps see them.
@@ -27,12 +33,14 @@ pub enum Phase {
 }
 
 impl Phase {
-    pub const ALL: [Phase; 8] = [
+    pub const ALL: [Phase; 10] = [
         Phase::Proxies,
         Phase::BroadPhase,
         Phase::NarrowPhase,
         Phase::Wake,
-        Phase::Solve,
+        Phase::SolveSetUp,
+        Phase::Substeps,
+        Phase::SolveStore,
         Phase::Continuous,
         Phase::Finalize,
         Phase::Sleep,
@@ -44,7 +52,9 @@ impl Phase {
             Phase::BroadPhase => "broad phase",
             Phase::NarrowPhase => "narrow phase",
             Phase::Wake => "islands/wake",
-            Phase::Solve => "solve",
+            Phase::SolveSetUp => "solve set-up",
+            Phase::Substeps => "substeps",
+            Phase::SolveStore => "solve store",
             Phase::Continuous => "continuous",
             Phase::Finalize => "finalize proxies",
             Phase::Sleep => "sleep",
@@ -58,7 +68,7 @@ pub struct StepProfile {
     /// Steps summed.
     pub steps: u64,
     /// Time per phase, indexed like [`Phase::ALL`].
-    pub phases: [Duration; 8],
+    pub phases: [Duration; 10],
     /// Whole steps, including what no phase covers (argument checks, clearing forces, the clock).
     pub total: Duration,
 }

@@ -66,10 +66,10 @@ impl World {
         self.isolate_bodies_about_to_overflow(dt);
 
         // Constraint solve with substeps: velocities, joints, positions (dynamics/solver.rs).
-        self.solve(dt, threads);
+        self.solve(dt, threads, &mut clock);
         drop(step_threads);
         self.isolate_non_finite_bodies();
-        self.profile.lap(Phase::Solve, &mut clock);
+        self.profile.lap(Phase::SolveStore, &mut clock);
 
         // Bullets that went through static geometry despite their contacts go back to the time
         // of impact (continuous.rs).

@@ -29,9 +29,11 @@ use crate::dynamics::solver_body::SolverBody;
 use crate::dynamics::solver_threads::{run_on_threads, ColouredContacts, SolveData};
 use crate::id::{Slot, SlotPool};
 use crate::math::DVec3;
+use crate::profile::Phase;
 use crate::shape::Shape;
 use crate::step_threads::{for_each_chunk_of, StepThreads};
 use crate::world::World;
+use std::time::Instant;
 
 /// Solver settings. The defaults suit 60 Hz steps of everyday objects.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -227,8 +229,9 @@ const PARALLEL_MIN_CONTACT_CHUNKS: usize = 8;
 
 impl World {
     /// Runs the solver stages for one step of `dt` (see the module docs for the order), on the
-    /// world's threads if it has them.
-    pub(crate) fn solve(&mut self, dt: f64, threads: Option<&StepThreads>) {
+    /// world's threads if it has them; the set-up and the substeps are timed into the profile
+    /// from `clock`.
+    pub(crate) fn solve(&mut self, dt: f64, threads: Option<&StepThreads>, clock: &mut Instant) {
         let ctx = StepContext::new(dt, self.gravity, &self.solver_settings);
 
         // Gather: the solver's working copy of every body, indexed by slot.
@@ -360,6 +363,7 @@ impl World {
         let lists = (&partition.constrained[..], &partition.unconstrained[..]);
         let data = SolveData::new(&mut bodies, lists, &mut contacts, &mut blocks, &colouring, &mut serial);
         let ctx = &ctx;
+        self.profile.lap(Phase::SolveSetUp, clock);
         let projection_iterations = self.solver_settings.joint_projection_iterations;
         let projection_tolerance = self.solver_settings.joint_projection_tolerance;
         // Projected trees are held at the position level: their velocity rows are rigid without
@@ -456,6 +460,7 @@ impl World {
             // The impulses are kept from the contacts below.
             data.give_back_block_states(thread);
         });
+        self.profile.lap(Phase::Substeps, clock);
 
         // Keep the impulses for the next step's warm start (the same contacts in the same order),
         // on the threads in chunks of the store: each contact's from its constraint, wherever the
