@@ -2,8 +2,9 @@
 //! followed by feature clipping to turn the single closest pair into a stable manifold.
 //!
 //! 1. GJK on the cores. If the cores are farther apart than the radii plus the margin, there is no
-//!    contact. If they are apart at all, the normal is the direction between the closest points and
-//!    the separation is their distance minus the radii — exact for rounded shapes.
+//!    contact (GJK stops as soon as it has proved that). If they are apart at all, the normal is
+//!    the direction between the closest points and the separation is their distance minus the
+//!    radii — exact for rounded shapes.
 //! 2. If the cores overlap, EPA on the cores gives depth and normal.
 //! 3. Each shape reports the feature facing the normal (vertex, edge, face). Face against edge or
 //!    face: clip the incident feature to the reference face. Parallel edges: clip one to the
@@ -14,7 +15,7 @@ use smallvec::SmallVec;
 use super::clip::{clip_segment, clip_to_face, ClipVertex};
 use super::epa::epa;
 use super::feature::{is_round_cap, supporting_feature, Feature, CAP_MISS};
-use super::gjk::{gjk, ConvexPair};
+use super::gjk::{gjk_within, ConvexPair};
 use super::manifold::{ContactPoint, Manifold};
 use super::support::Rounded;
 use crate::math::{DVec3, Transform};
@@ -36,10 +37,14 @@ pub fn collide_convex(
 ) -> Option<Manifold> {
     let pair = ConvexPair::new(a.core, pose_a, b.core, pose_b);
     let initial = if *warm_dir != DVec3::ZERO { *warm_dir } else { pair.b_in_a.translation };
-    let g = gjk(&pair, initial);
     let radius = a.radius + b.radius;
+    // Pairs whose cores are farther apart than that have no contact: the search stops as soon
+    // as it knows (most of a pile's pairs, whose fat boxes overlap, stay apart).
+    let g = gjk_within(&pair, initial, radius + margin);
     if !g.overlapping && g.distance > radius + margin {
-        *warm_dir = g.point_b - g.point_a;
+        // The start direction, if it proved the gap by itself (no iteration), is the one to
+        // start from again; else the direction between the closest points found.
+        *warm_dir = if g.iterations == 0 { initial } else { g.point_b - g.point_a };
         return None;
     }
     let scale = pair.scale();

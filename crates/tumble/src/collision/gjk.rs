@@ -113,6 +113,23 @@ pub fn gjk_within(pair: &ConvexPair, initial_dir: DVec3, max_distance: f64) -> G
     // The point of A − B nearest the origin lies on the side facing from A towards B.
     simplex.points[0] = pair.support(d0);
     simplex.len = 1;
+    // No point of A − B lies farther along `d0` than this support point, so the cores are at
+    // least `−d0·w₀ / |d0|` apart. Warm-started from last step's normal, that bound already puts
+    // most pairs that stay apart beyond `max_distance`, before any iteration.
+    if max_distance.is_finite() {
+        let bound = -d0.dot(simplex.points[0].w) / d0.length();
+        if bound > max_distance {
+            let SupportPoint { a: point_a, b: point_b, .. } = simplex.points[0];
+            return GjkResult {
+                distance: bound,
+                point_a,
+                point_b,
+                overlapping: false,
+                simplex,
+                iterations: 0,
+            };
+        }
+    }
     let mut v = simplex.points[0].w;
     let mut lambda = [1.0, 0.0, 0.0, 0.0];
     let mut iterations = 0;
@@ -349,7 +366,9 @@ mod tests {
 
     /// Within `max_distance`, `gjk_within` is `gjk` bit for bit; beyond it, it may stop early,
     /// with a distance that is above `max_distance` and at most the true one. Boxes and a triangle
-    /// against a box, at random poses and gaps.
+    /// against a box, at random poses and gaps, searched from a fixed direction and from the
+    /// true one (last step's normal, for a pair that has not moved): from that, a gap beyond
+    /// `max_distance` is known before any iteration.
     #[test]
     fn early_out_beyond_max_distance_is_a_lower_bound() {
         let mut rng = crate::scenes::rng::SplitMix64::new(0x5_eed0_f9e3);
@@ -360,7 +379,7 @@ mod tests {
             DVec3::new(1.0, -0.5, 0.0),
             DVec3::new(0.0, 1.0, 0.0),
         ]);
-        let (mut stopped_early, mut within) = (0, 0);
+        let (mut stopped_early, mut within, mut known_at_start) = (0, 0, 0);
         for k in 0..2000 {
             let a = if k % 2 == 0 { box_core } else { triangle };
             let axis = DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::Z);
@@ -370,24 +389,33 @@ mod tests {
             );
             let pair = ConvexPair::new(a, &Transform::IDENTITY, box_core, &pose_b);
             let max_distance = 0.5 * unit().abs();
-            let full = gjk(&pair, DVec3::Z);
-            let early = gjk_within(&pair, DVec3::Z, max_distance);
-            if full.overlapping || full.distance <= max_distance {
-                within += 1;
-                assert_eq!(early.distance.to_bits(), full.distance.to_bits(), "k {k}");
-                assert_eq!(early.overlapping, full.overlapping, "k {k}");
-                assert_eq!((early.point_a, early.point_b), (full.point_a, full.point_b), "k {k}");
-            } else {
-                stopped_early += usize::from(early.iterations < full.iterations);
-                assert!(!early.overlapping && early.distance > max_distance, "k {k}");
-                assert!(
-                    early.distance <= full.distance * (1.0 + 1e-12),
-                    "k {k}: {} > {}",
-                    early.distance,
-                    full.distance
-                );
+            let from_z = gjk(&pair, DVec3::Z);
+            let true_direction = from_z.point_b - from_z.point_a;
+            for start in [DVec3::Z, true_direction] {
+                let full = gjk(&pair, start);
+                let early = gjk_within(&pair, start, max_distance);
+                if full.overlapping || full.distance <= max_distance {
+                    within += 1;
+                    assert_eq!(early.distance.to_bits(), full.distance.to_bits(), "k {k}");
+                    assert_eq!(early.overlapping, full.overlapping, "k {k}");
+                    assert_eq!((early.point_a, early.point_b), (full.point_a, full.point_b), "k {k}");
+                } else {
+                    stopped_early += usize::from(early.iterations < full.iterations);
+                    assert!(!early.overlapping && early.distance > max_distance, "k {k}");
+                    assert!(
+                        early.distance <= full.distance * (1.0 + 1e-12),
+                        "k {k}: {} > {}",
+                        early.distance,
+                        full.distance
+                    );
+                    if start == true_direction && full.distance > max_distance * (1.0 + 1e-9) {
+                        assert_eq!(early.iterations, 0, "k {k}");
+                        known_at_start += 1;
+                    }
+                }
             }
         }
-        assert!(stopped_early > 200 && within > 200, "stopped early {stopped_early}, within {within}");
+        assert!(stopped_early > 400 && within > 400, "stopped early {stopped_early}, within {within}");
+        assert!(known_at_start > 200, "known at the start {known_at_start}");
     }
 }
