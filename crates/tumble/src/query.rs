@@ -17,7 +17,7 @@
 
 use crate::body::Body;
 use crate::collision::aabb::shape_aabb;
-use crate::collision::contact_manager::{leaf, leaves, unpack};
+use crate::collision::contact_manager::{leaf, leaf_pose, leaves, unpack};
 use crate::collision::narrow_phase::{collide, kind_rank, PairCache};
 use crate::collision::ray::{ray_cast_shape, Ray};
 use crate::collision::{Aabb, CollisionFilter, ProxyKey};
@@ -118,14 +118,7 @@ impl World {
             return None;
         }
         let (shape, local) = leaf(body.shape.as_ref()?, child);
-        // A single shape sits at the body pose itself (`mul_transform` would renormalise the
-        // rotation and change the last bits of the answer).
-        let pose = if local == Transform::IDENTITY {
-            body.transform()
-        } else {
-            body.transform().mul_transform(&local)
-        };
-        Some((raw.into(), shape, pose))
+        Some((raw.into(), shape, leaf_pose(body.transform(), &local)))
     }
 
     /// The closest body hit by the ray `origin + t·direction`, `0 ≤ t ≤ max_distance`
@@ -211,7 +204,7 @@ impl World {
         let filter = filter.copied().unwrap_or_default();
         let mut found = Vec::new();
         for (query_leaf, local) in query_leaves {
-            let query_pose = pose.mul_transform(&local);
+            let query_pose = leaf_pose(pose, &local);
             let query_box = shape_aabb(query_leaf, &query_pose);
             for key in self.proxies_overlapping(&query_box) {
                 let Some((body, shape, pose)) = self.proxy_leaf(key, &filter) else { continue };

@@ -44,15 +44,17 @@ pub(crate) fn leaf(shape: &Shape, child: u32) -> (&Shape, Transform) {
     }
 }
 
-/// The pose of a leaf of a body's `shape` whose pose in the body is `local` ([`leaf`]), for the
-/// body at `body_pose`: a compound's child at its pose in the body, any other leaf (the body's
-/// own shape) at the body's pose. (The product with the identity would only renormalise the
-/// rotation, changing its last bits: in the narrow phase a rain of 2,000 balls ran 1.12x
-/// without it, with the same bits, as a ball's contacts do not read its rotation.)
-pub(crate) fn leaf_pose(body_pose: Transform, shape: &Shape, local: &Transform) -> Transform {
-    match shape {
-        Shape::Compound(_) => body_pose.mul_transform(local),
-        _ => body_pose,
+/// The pose of a leaf whose pose in the body is `local` ([`leaf`]), for the body at `body_pose`:
+/// a leaf at the identity (the body's own shape) sits at the body's pose itself. (The product
+/// with the identity would only renormalise the rotation, changing its last bits: in the narrow
+/// phase a rain of 2,000 balls ran 1.12x without it, with the same bits, as a ball's contacts do
+/// not read its rotation.) The narrow phase, the proxies' boxes and the queries all place leaves
+/// by this one rule.
+pub(crate) fn leaf_pose(body_pose: Transform, local: &Transform) -> Transform {
+    if *local == Transform::IDENTITY {
+        body_pose
+    } else {
+        body_pose.mul_transform(local)
     }
 }
 
@@ -125,11 +127,7 @@ impl ContactManager {
             .into_iter()
             .enumerate()
             .map(|(i, (leaf, local))| {
-                self.broad_phase.create_proxy(
-                    shape_aabb(leaf, &pose.mul_transform(&local)),
-                    kind,
-                    pack(slot, i),
-                )
+                self.broad_phase.create_proxy(shape_aabb(leaf, &leaf_pose(pose, &local)), kind, pack(slot, i))
             })
             .collect();
     }
@@ -390,7 +388,7 @@ fn proxy_updates(body: &Body, dt: f64, margin: f64) -> impl Iterator<Item = Prox
     body.shape.iter().flat_map(move |shape| {
         body.proxies.iter().enumerate().map(move |(child, &key)| {
             let (leaf_shape, local) = leaf(shape, child as u32);
-            let leaf_pose = leaf_pose(pose, shape, &local);
+            let leaf_pose = leaf_pose(pose, &local);
             let tight = shape_aabb(leaf_shape, &leaf_pose);
             let aabb = match turning_ball(leaf_shape, &leaf_pose, com) {
                 Some(radius) if turn * radius > 0.25 * margin => {
@@ -433,8 +431,8 @@ fn update_manifold(contact: &mut Contact, a: &Body, b: &Body, dt: f64) {
         }
     };
     let (leaf_a, leaf_b) = (moving(a, leaf_a), moving(b, leaf_b));
-    let pose_a = leaf_pose(a.transform(), shape_a, &local_a);
-    let pose_b = leaf_pose(b.transform(), shape_b, &local_b);
+    let pose_a = leaf_pose(a.transform(), &local_a);
+    let pose_b = leaf_pose(b.transform(), &local_b);
     // A pair that has barely moved since its manifold was made keeps the manifold's points.
     if let (Some(origin), Some(manifold)) = (&contact.manifold_origin, &contact.manifold) {
         if origin.still_fits(&pose_a, &pose_b) {
