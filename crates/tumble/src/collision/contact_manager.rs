@@ -434,9 +434,9 @@ fn update_manifold(contact: &mut Contact, a: &Body, b: &Body, dt: f64) {
     let pose_a = leaf_pose(a.transform(), &local_a);
     let pose_b = leaf_pose(b.transform(), &local_b);
     // A pair that has barely moved since its manifold was made keeps the manifold's points.
-    if let (Some(origin), Some(manifold)) = (&contact.manifold_origin, &contact.manifold) {
+    if let (Some(origin), Some(manifold)) = (&contact.manifold_origin, &mut contact.manifold) {
         if origin.still_fits(&pose_a, &pose_b) {
-            contact.manifold = Some(origin.remeasure(manifold, &pose_a, &pose_b));
+            origin.remeasure(manifold, &pose_a, &pose_b);
             return;
         }
     }

@@ -70,6 +70,10 @@ impl Manifold {
         &self.points[..self.len]
     }
 
+    pub fn points_mut(&mut self) -> &mut [ContactPoint] {
+        &mut self.points[..self.len]
+    }
+
     pub fn len(&self) -> usize {
         self.len
     }
