@@ -30,9 +30,14 @@ from run import MATCHED, TABLE_STEPS, TUMBLE, machine
 SCENES = ["large_pyramid", "rain", "pyramid"]
 
 
+def bench_command(scene, settings, threads):
+    """One timed run of the scene at the table's step count, printed as JSON."""
+    steps = str(TABLE_STEPS[scene])
+    return [TUMBLE, "bench", scene, "--steps", steps, "--runs", "1", "--threads", str(threads), *settings, "--json"]
+
+
 def rate(scene, settings, threads):
-    cmd = [TUMBLE, "bench", scene, "--steps", str(TABLE_STEPS[scene]), "--runs", "1", "--threads", str(threads)]
-    out = subprocess.run(cmd + settings + ["--json"], capture_output=True, text=True, check=True)
+    out = subprocess.run(bench_command(scene, settings, threads), capture_output=True, text=True, check=True)
     result = json.loads(out.stdout)
     # The final state's hash with the quality numbers: the two thread counts must agree on both.
     return result["steps_per_second"], (result["metrics"], result["state_hash"])
@@ -40,8 +45,7 @@ def rate(scene, settings, threads):
 
 def copies_rate(scene, settings):
     """Steps/s summed over two one-thread copies of the bench run at once."""
-    cmd = [TUMBLE, "bench", scene, "--steps", str(TABLE_STEPS[scene]), "--runs", "1", "--threads", "1"]
-    procs = [subprocess.Popen(cmd + settings + ["--json"], stdout=subprocess.PIPE, text=True) for _ in range(2)]
+    procs = [subprocess.Popen(bench_command(scene, settings, 1), stdout=subprocess.PIPE, text=True) for _ in range(2)]
     outs = [p.communicate()[0] for p in procs]
     if any(p.returncode != 0 for p in procs):
         sys.exit(f"{scene}: a copy failed")
