@@ -207,7 +207,9 @@ pub(crate) fn linear_pair(radii: (f64, f64), a: &SolverBody, b: &SolverBody) -> 
 
 /// Material offsets `(r_a_local, r_b_local)` from the step-start surface points `r_a`, `r_b`: the
 /// points themselves, or on a round side (radius > 0) its centre of curvature, `R` behind the
-/// surface along the normal `n` (from a to b). See `PointConstraint::anchors`.
+/// surface along the normal `n` (from a to b). See `PointConstraint::anchors`. (Turned into the
+/// body frames by the transposed rotation matrix, which `round_anchors` turns back with: half the
+/// arithmetic of the quaternion's inverse rotation, and the matched pyramid's set-up 1.04x.)
 #[inline]
 pub(crate) fn round_locals(
     (r_a, r_b): (DVec3, DVec3),
@@ -216,7 +218,7 @@ pub(crate) fn round_locals(
     a: &SolverBody,
     b: &SolverBody,
 ) -> (DVec3, DVec3) {
-    (a.q.inverse() * (r_a - radii.0 * n), b.q.inverse() * (r_b + radii.1 * n))
+    (a.rotation.transpose() * (r_a - radii.0 * n), b.rotation.transpose() * (r_b + radii.1 * n))
 }
 
 /// The surface points now from the material offsets of `round_locals`.
