@@ -1,11 +1,17 @@
 //! Narrow-phase cost per pair: a box resting on a box (SAT + clipping, 4 points, warm cache), and
-//! two 20-point random hulls touching in 64 poses (SAT over hull faces and Gauss-map edge pairs).
+//! two 20-point random hulls touching in 64 poses (SAT over hull faces and Gauss-map edge pairs), and
+//! two 10-point hulls like the convex pile's, likewise.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use tumble::collision::{collide, PairCache};
 use tumble::{ConvexHull, Cuboid, DQuat, DVec3, Shape, Transform};
 
 fn random_hull(seed: u64) -> ConvexHull {
+    random_hull_of(seed, 20, DVec3::splat(0.5))
+}
+
+/// `count` random points on the ellipsoid of radii `radii`, and their hull.
+fn random_hull_of(seed: u64, count: usize, radii: DVec3) -> ConvexHull {
     let mut s = seed | 1;
     let mut rnd = || {
         s ^= s << 13;
@@ -13,7 +19,7 @@ fn random_hull(seed: u64) -> ConvexHull {
         s ^= s << 17;
         (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     };
-    let pts: Vec<DVec3> = (0..20).map(|_| DVec3::new(rnd(), rnd(), rnd()).normalize() * 0.5).collect();
+    let pts: Vec<DVec3> = (0..count).map(|_| DVec3::new(rnd(), rnd(), rnd()).normalize() * radii).collect();
     ConvexHull::new(&pts).expect("random points on a sphere have a hull")
 }
 
@@ -29,9 +35,19 @@ fn bench(c: &mut Criterion) {
     });
 
     let (ha, hb) = (Shape::ConvexHull(random_hull(7)), Shape::ConvexHull(random_hull(11)));
-    // B just touching A from 64 directions, each turned its own way: one pose asked again and
-    // again would let the processor learn every branch of the test by heart, which a scene's
-    // thousands of different pairs never allow.
+    bench_touching(c, "hull_hull_touching_64_poses", &ha, &hb);
+    // The convex pile's hulls: ten points on an ellipsoid of radii 0.25-0.45 m.
+    let (ha, hb) = (
+        Shape::ConvexHull(random_hull_of(3, 10, DVec3::new(0.3, 0.4, 0.35))),
+        Shape::ConvexHull(random_hull_of(5, 10, DVec3::new(0.42, 0.27, 0.33))),
+    );
+    bench_touching(c, "hull10_hull10_touching_64_poses", &ha, &hb);
+}
+
+/// B just touching A from 64 directions, each turned its own way: one pose asked again and
+/// again would let the processor learn every branch of the test by heart, which a scene's
+/// thousands of different pairs never allow.
+fn bench_touching(c: &mut Criterion, name: &str, ha: &Shape, hb: &Shape) {
     let mut touching: Vec<(Transform, PairCache)> = (0..64)
         .map(|k| {
             let t = k as f64;
@@ -39,19 +55,18 @@ fn bench(c: &mut Criterion) {
             let q = DQuat::from_axis_angle(DVec3::new(t.sin(), 1.0, (2.0 * t).cos()).normalize(), 0.4 * t);
             // Find the gap with a far-apart query, then close it.
             let mut pose_b = Transform::new(2.0 * dir, q);
-            let far = collide(&ha, &Transform::IDENTITY, &hb, &pose_b, 10.0, &mut PairCache::default())
+            let far = collide(ha, &Transform::IDENTITY, hb, &pose_b, 10.0, &mut PairCache::default())
                 .expect("within 10 m");
             pose_b.translation -= far.normal_world * (far.min_separation() + 0.005);
             (pose_b, PairCache::default())
         })
         .collect();
-    c.bench_function("hull_hull_touching_64_poses", |b| {
+    c.bench_function(name, |b| {
         b.iter(|| {
             touching
                 .iter_mut()
                 .map(|(pose_b, cache)| {
-                    let m =
-                        collide(black_box(&ha), &Transform::IDENTITY, black_box(&hb), pose_b, 0.02, cache);
+                    let m = collide(black_box(ha), &Transform::IDENTITY, black_box(hb), pose_b, 0.02, cache);
                     m.map_or(0, |m| m.len())
                 })
                 .sum::<usize>()

@@ -2,13 +2,14 @@
 //! manifold was made keeps that manifold's points and only measures them again.
 //!
 //! A manifold's points are fixed on each shape (`local_point_a`, `local_point_b`) and its normal is
-//! fixed on A. While no point of either shape has moved more than [`MAX_MOTION`] relative to the
-//! other shape since the manifold was made, the same features still touch, so the points are
+//! fixed on A. While no point of either shape has moved more than the limit (2 mm, [`MAX_MOTION`],
+//! or 1% of the smaller shape's reach if that is less) relative to the other shape since the
+//! manifold was made, the same features still touch, so the points are
 //! carried along with their shapes and each separation is measured again along the normal. For a
 //! vertex of one shape on a face of the other — the points of face contacts between boxes and
 //! hulls, and of boxes and hulls on terrain — that measure is exact; a point clipped at the edge
 //! of a face or an edge–edge point is off by at most the motion. A vertex that was left out (beyond
-//! the speculative margin, or by the reduction to four points) has come at most `MAX_MOTION`
+//! the speculative margin, or by the reduction to four points) has come at most the limit
 //! closer. The motion is measured from the pose at which the manifold was made, never step to
 //! step, so it cannot add up: once past the limit, the pair runs the full query again.
 //!
@@ -29,8 +30,11 @@ use crate::math::{DVec3, Transform};
 use crate::shape::Shape;
 
 /// The most any point of one shape may have moved relative to the other, m, for a manifold to be
-/// reused.
-pub const MAX_MOTION: f64 = 5e-4;
+/// reused: 2 mm, or less for small shapes (`REACH_FRACTION`).
+pub const MAX_MOTION: f64 = 2e-3;
+/// For shapes smaller than 20 cm, the limit is this fraction of the smaller reach (a 1 cm die:
+/// 87 um), so what reuse gets wrong stays small against the shapes themselves.
+pub const REACH_FRACTION: f64 = 0.01;
 
 /// Where a manifold was made: B's pose in A's frame, the normal in A's frame, and each shape's
 /// reach (the farthest its points lie from its origin).
@@ -92,9 +96,15 @@ impl ManifoldOrigin {
         (shift_seen_from_a + chord * self.reach_b).min(shift_seen_from_b + chord * self.reach_a)
     }
 
+    /// The most the shapes may move relative to each other while the manifold is reused:
+    /// `MAX_MOTION`, or `REACH_FRACTION` of the smaller shape's reach if that is less.
+    pub fn motion_limit(&self) -> f64 {
+        MAX_MOTION.min(REACH_FRACTION * self.reach_a.min(self.reach_b))
+    }
+
     /// Whether the manifold may be reused at these poses.
     pub fn still_fits(&self, pose_a: &Transform, pose_b: &Transform) -> bool {
-        self.motion(pose_a, pose_b) < MAX_MOTION
+        self.motion(pose_a, pose_b) < self.motion_limit()
     }
 
     /// Carries `manifold`'s points to these poses and measures them again, in place: the normal
@@ -192,6 +202,21 @@ mod tests {
             assert!((p.point_world - carry.transform_point(q.point_world)).length() < 1e-12);
         }
         assert!((carried.normal_world - carry.rotation * manifold.normal_world).length() < 1e-14);
+    }
+
+    /// A small shape's limit is a hundredth of its reach: a 1 cm die on a unit box may move
+    /// 87 um, not 2 mm.
+    #[test]
+    fn small_shapes_have_a_smaller_limit() {
+        let (a, die) = (unit_box(), Shape::Cuboid(Cuboid::new(DVec3::splat(0.005)).unwrap()));
+        let on_top = |slide: f64| Transform::new(DVec3::new(slide, 0.0, 0.5049), DQuat::IDENTITY);
+        let manifold =
+            collide(&a, &Transform::IDENTITY, &die, &on_top(0.0), 0.02, &mut PairCache::default()).unwrap();
+        let origin = ManifoldOrigin::new(&a, &Transform::IDENTITY, &die, &on_top(0.0), &manifold);
+        let limit = REACH_FRACTION * 0.005 * 3f64.sqrt();
+        assert!((origin.motion_limit() - limit).abs() < 1e-15 && limit < 1e-4);
+        assert!(origin.still_fits(&Transform::IDENTITY, &on_top(0.9 * limit)));
+        assert!(!origin.still_fits(&Transform::IDENTITY, &on_top(1.1 * limit)));
     }
 
     #[test]
