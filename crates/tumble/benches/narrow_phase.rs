@@ -35,20 +35,20 @@ fn bench(c: &mut Criterion) {
     });
 
     let (ha, hb) = (Shape::ConvexHull(random_hull(7)), Shape::ConvexHull(random_hull(11)));
-    bench_touching(c, "hull_hull_overlapping", &ha, &hb);
+    bench_overlapping(c, "hull_hull_overlapping", &ha, &hb);
     // The convex pile's hulls: ten points on an ellipsoid of radii 0.25-0.45 m.
     let (ha, hb) = (
         Shape::ConvexHull(random_hull_of(3, 10, DVec3::new(0.3, 0.4, 0.35))),
         Shape::ConvexHull(random_hull_of(5, 10, DVec3::new(0.42, 0.27, 0.33))),
     );
-    bench_touching(c, "hull10_hull10_overlapping", &ha, &hb);
+    bench_overlapping(c, "hull10_hull10_overlapping", &ha, &hb);
 }
 
-/// B overlapping A by 5 mm from up to 64 directions, each turned its own way: one pose asked again and
-/// again would let the processor learn every branch of the test by heart, which a scene's
-/// thousands of different pairs never allow.
-fn bench_touching(c: &mut Criterion, name: &str, ha: &Shape, hb: &Shape) {
-    let mut touching: Vec<(Transform, PairCache)> = (0..64)
+/// B overlapping A by 5 mm from up to 64 directions, each turned its own way: one pose asked
+/// again and again would let the processor learn every branch of the test by heart, which a
+/// scene's thousands of different pairs never allow.
+fn bench_overlapping(c: &mut Criterion, name: &str, ha: &Shape, hb: &Shape) {
+    let mut poses: Vec<(Transform, PairCache)> = (0..64)
         .map(|k| {
             let t = k as f64;
             let dir = DVec3::new((0.7 * t).cos(), (0.7 * t).sin(), (1.3 * t).sin()).normalize();
@@ -70,15 +70,15 @@ fn bench_touching(c: &mut Criterion, name: &str, ha: &Shape, hb: &Shape) {
         })
         .collect();
     // Only the poses that overlap (the closing can cycle between two features, rarely).
-    touching.retain(|(pose_b, _)| {
+    poses.retain(|(pose_b, _)| {
         collide(ha, &Transform::IDENTITY, hb, pose_b, 0.02, &mut PairCache::default())
             .is_some_and(|m| m.min_separation() < 0.0)
     });
-    assert!(touching.len() >= 56, "{} of 64 poses overlap", touching.len());
+    assert!(poses.len() >= 56, "{} of 64 poses overlap", poses.len());
     // The pose count is in the name: the time is for all of them.
-    c.bench_function(&format!("{name}_{}_poses", touching.len()), |b| {
+    c.bench_function(&format!("{name}_{}_poses", poses.len()), |b| {
         b.iter(|| {
-            touching
+            poses
                 .iter_mut()
                 .map(|(pose_b, cache)| {
                     let m = collide(black_box(ha), &Transform::IDENTITY, black_box(hb), pose_b, 0.02, cache);
