@@ -21,6 +21,7 @@ use super::polytope::Polytope;
 use super::segment::closest_segment_segment;
 use smallvec::SmallVec;
 use std::cell::Cell;
+use wide::f64x4;
 
 use crate::math::{DVec3, Transform};
 use crate::shape::HullEdge;
@@ -311,6 +312,12 @@ impl<'p, 'h> Frames<'p, 'h> {
         // tests below, in the same order, so the same pairs pass and the same one wins (a product
         // below zero has factors of opposite sign bits: the set holds every edge that can pass).
         let mut face_edges_b: SmallVec<[u128; 32]> = SmallVec::new();
+        // The second sign test (`adc·bdc < 0`: A's edge lies on A's outline seen along B's edge)
+        // likewise: per face of A, the set of B's edges it faces away from (the sign bits of
+        // `n · dir_b`, each product taken as the test takes it); an edge of A can pass with the B
+        // edges where its two faces' sets differ. The candidates are then the edges in both sets,
+        // about one per edge of A where the first set alone left six or seven.
+        let mut away_from_a_face: SmallVec<[u128; 32]> = SmallVec::new();
         if sets {
             face_edges_b.resize(self.lists.normals_b.len(), 0);
             for (ib, eb) in edges_b.iter().enumerate() {
@@ -318,6 +325,17 @@ impl<'p, 'h> Frames<'p, 'h> {
                     face_edges_b[f as usize] |= 1 << ib;
                 }
             }
+            // B's edge directions by coordinate, four at a time (zeros past the last).
+            let dirs_b_by_four: SmallVec<[[f64x4; 3]; 8]> = (0..edges_b.len().div_ceil(4))
+                .map(|k| {
+                    let dir = |j: usize| dirs_b.get(4 * k + j).copied().unwrap_or(DVec3::ZERO);
+                    let four = [dir(0), dir(1), dir(2), dir(3)];
+                    std::array::from_fn(|c| f64x4::new([four[0][c], four[1][c], four[2][c], four[3][c]]))
+                })
+                .collect();
+            let live = if dirs_b.len() == 128 { u128::MAX } else { (1u128 << dirs_b.len()) - 1 };
+            away_from_a_face
+                .extend(self.lists.normals_a.iter().map(|&n| signs_below_zero(&dirs_b_by_four, n) & live));
         }
         let mut passing: SmallVec<[u32; 128]> = SmallVec::new();
         passing.resize(edges_b.len(), 0);
@@ -325,9 +343,11 @@ impl<'p, 'h> Frames<'p, 'h> {
             let [f0, f1] = ea.faces.map(|f| self.lists.normals_a[f as usize]);
             normals_dot(&self.lists.normals_b_by_axis, dirs_a[ia], &mut dir_a_on_b);
             let candidates = if sets {
-                EdgeCandidates::Set(dir_a_on_b.iter().zip(&face_edges_b).fold(0u128, |set, (d, edges)| {
+                let outline_b = dir_a_on_b.iter().zip(&face_edges_b).fold(0u128, |set, (d, edges)| {
                     set ^ (edges & 0u128.wrapping_sub(u128::from(d.is_sign_negative())))
-                }))
+                });
+                let [g0, g1] = ea.faces.map(|f| away_from_a_face[f as usize]);
+                EdgeCandidates::Set(outline_b & (g0 ^ g1))
             } else {
                 EdgeCandidates::All(0..edges_b.len())
             };
@@ -381,6 +401,20 @@ impl Iterator for EdgeCandidates {
             EdgeCandidates::All(range) => range.next(),
         }
     }
+}
+
+/// The set of the directions `d` (given four at a time by coordinate, at most 128) with `n · d`
+/// negative, or `−0`: its sign bit, with the product taken as `DVec3::dot` takes it (the same
+/// bits). The places past the last direction hold zeros, whose bits the caller masks out.
+#[inline]
+fn signs_below_zero(dirs_by_four: &[[f64x4; 3]], n: DVec3) -> u128 {
+    let (nx, ny, nz) = (f64x4::splat(n.x), f64x4::splat(n.y), f64x4::splat(n.z));
+    let mut set = 0u128;
+    for (k, [xs, ys, zs]) in dirs_by_four.iter().enumerate() {
+        let dots = *xs * nx + *ys * ny + *zs * nz;
+        set |= u128::from(dots.to_bitmask()) << (4 * k);
+    }
+    set
 }
 
 /// `out[j] = n_j · d` for the normals given by coordinate (`[xs, ys, zs]`), in the order of
