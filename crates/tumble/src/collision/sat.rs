@@ -23,6 +23,7 @@ use smallvec::SmallVec;
 use std::cell::Cell;
 use wide::f64x4;
 
+use crate::lanes::V3;
 use crate::math::{DVec3, Transform};
 use crate::shape::HullEdge;
 
@@ -325,13 +326,9 @@ impl<'p, 'h> Frames<'p, 'h> {
                     face_edges_b[f as usize] |= 1 << ib;
                 }
             }
-            // B's edge directions by coordinate, four at a time (zeros past the last).
-            let dirs_b_by_four: SmallVec<[[f64x4; 3]; 8]> = (0..edges_b.len().div_ceil(4))
-                .map(|k| {
-                    let dir = |j: usize| dirs_b.get(4 * k + j).copied().unwrap_or(DVec3::ZERO);
-                    let four = [dir(0), dir(1), dir(2), dir(3)];
-                    std::array::from_fn(|c| f64x4::new([four[0][c], four[1][c], four[2][c], four[3][c]]))
-                })
+            // B's edge directions in vector lanes, four at a time (zeros past the last).
+            let dirs_b_by_four: SmallVec<[V3<f64x4>; 8]> = (0..edges_b.len().div_ceil(4))
+                .map(|k| V3::from_fn(|j| dirs_b.get(4 * k + j).copied().unwrap_or(DVec3::ZERO)))
                 .collect();
             let live = if dirs_b.len() == 128 { u128::MAX } else { (1u128 << dirs_b.len()) - 1 };
             away_from_a_face
@@ -403,18 +400,16 @@ impl Iterator for EdgeCandidates {
     }
 }
 
-/// The set of the directions `d` (given four at a time by coordinate, at most 128) with `n · d`
+/// The set of the directions `d` (given four at a time in vector lanes, at most 128) with `n · d`
 /// negative, or `−0`: its sign bit, with the product taken as `DVec3::dot` takes it (the same
 /// bits). The places past the last direction hold zeros, whose bits the caller masks out.
 #[inline]
-fn signs_below_zero(dirs_by_four: &[[f64x4; 3]], n: DVec3) -> u128 {
-    let (nx, ny, nz) = (f64x4::splat(n.x), f64x4::splat(n.y), f64x4::splat(n.z));
-    let mut set = 0u128;
-    for (k, [xs, ys, zs]) in dirs_by_four.iter().enumerate() {
-        let dots = *xs * nx + *ys * ny + *zs * nz;
-        set |= u128::from(dots.to_bitmask()) << (4 * k);
-    }
-    set
+fn signs_below_zero(dirs_by_four: &[V3<f64x4>], n: DVec3) -> u128 {
+    let n = V3::from_fn(|_| n);
+    dirs_by_four
+        .iter()
+        .enumerate()
+        .fold(0, |set, (k, d)| set | (u128::from(d.dot(n).to_bitmask()) << (4 * k)))
 }
 
 /// `out[j] = n_j · d` for the normals given by coordinate (`[xs, ys, zs]`), in the order of
