@@ -8,10 +8,12 @@
 //!    (flat or concave neighbours) can only have its face normal, so it goes straight to the face
 //!    contact, and so does a triangle the shape's core lies wholly above with its lowest point
 //!    over the triangle (that point and its foot are then the closest pair, along the face
-//!    normal). A triangle with a convex or boundary edge otherwise first runs GJK/EPA between the
-//!    triangle and the shape's core; if the normal found passes the internal-edge rule (see
-//!    [`super::triangle`]) and is not the face normal, the contact is the convex–convex manifold
-//!    of the triangle and the shape (edge or vertex contact). Otherwise it is the face contact:
+//!    normal), and a triangle whose convex edges bend too little for the rule to allow any normal
+//!    outside the face cone ([`allows_only_face_normals`]). A triangle with a convex or boundary
+//!    edge otherwise first runs GJK/EPA between the triangle and the shape's core; if the normal
+//!    found passes the internal-edge rule (see [`super::triangle`]) and is not the face normal,
+//!    the contact is the convex–convex manifold of the triangle and the shape (edge or vertex
+//!    contact). Otherwise it is the face contact:
 //!    the shape's feature facing `−n_T` clipped to the triangle, separations from its plane (with
 //!    a cylinder's or cone's true lowest point added when its cap polygon's corners sit higher).
 //! 3. **One manifold.** The normal is that of the deepest candidate; candidates within 30° of it
@@ -36,7 +38,7 @@ use super::feature::{
 use super::gjk::{gjk_within, ConvexPair};
 use super::manifold::{ContactPoint, Manifold};
 use super::support::{Core, Rounded};
-use super::triangle::{edge_bends, has_sharp_edge, normal_allowed, TriangleSource};
+use super::triangle::{allows_only_face_normals, edge_bends, has_sharp_edge, normal_allowed, TriangleSource};
 use crate::math::{DMat3, DVec3, Transform};
 use crate::shape::Shape;
 use smallvec::{smallvec, SmallVec};
@@ -138,7 +140,11 @@ fn triangle_contact<S: TriangleSource + ?Sized>(
     // the foot is on the triangle), so the normal is the face normal and GJK would only confirm
     // it — the face contact below, whatever the edges.
     let face_only = height > 0.0 && over_triangle(lowest, &v, n_t);
-    if !face_only && has_sharp_edge(&bends) && edge_contact(t, &v, n_t, &bends, shape, b_in_a, margin, out) {
+    if !face_only
+        && has_sharp_edge(&bends)
+        && !allows_only_face_normals(&v, n_t, &bends)
+        && edge_contact(t, &v, n_t, &bends, shape, b_in_a, margin, out)
+    {
         return;
     }
     face_contact(t, &v, n_t, shape, b_in_a, down_local, margin, out);

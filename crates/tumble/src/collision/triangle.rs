@@ -131,6 +131,56 @@ pub fn normal_allowed(v: &[DVec3; 3], n_t: DVec3, bends: &[Option<f64>; 3], n: D
     leans || n.dot(n_t) > 0.0
 }
 
+/// True when the internal-edge rule allows no normal outside the face cone (`n·n_T ≥`
+/// [`FACE_COS_TOLERANCE`]): every edge has a neighbour and the convex ones bend too little for
+/// any normal they allow to lean farther. A contact on such a triangle is always its face
+/// contact, whatever GJK/EPA would find. See docs/collision.md for the bound.
+pub fn allows_only_face_normals(v: &[DVec3; 3], n_t: DVec3, bends: &[Option<f64>; 3]) -> bool {
+    // For an allowed normal n = cos α n_T + sin α w (w a unit in-plane direction), every edge k
+    // bounds sin α (w·u_k) by `limit[k]`: a flat or concave edge by the lean tolerance, a convex
+    // one by tan(φ + tolerance) ≥ tan θ ≥ sin θ. So sin α ≤ min over edges with w·u_k > 0 of
+    // limit[k] / (w·u_k), whose largest value over w lies where two such ratios are equal.
+    let mut limit = [0.0; 3];
+    let mut out = [DVec3::ZERO; 3];
+    for k in 0..3 {
+        limit[k] = match bends[k] {
+            None => return false,
+            Some(phi) if phi > CONVEX_EDGE_ANGLE => {
+                let most = phi + EDGE_ANGLE_TOLERANCE;
+                if most >= 0.5 {
+                    return false;
+                }
+                most.tan().max(LEAN_TOLERANCE)
+            }
+            Some(_) => LEAN_TOLERANCE,
+        };
+        out[k] = (v[(k + 1) % 3] - v[k]).normalize_or_zero().cross(n_t);
+    }
+    let bound_at = |w: DVec3| {
+        (0..3).fold(f64::INFINITY, |m, k| {
+            let c = w.dot(out[k]);
+            if c > 0.0 {
+                m.min(limit[k] / c)
+            } else {
+                m
+            }
+        })
+    };
+    let mut sin_max: f64 = 0.0;
+    for a in 0..3 {
+        let b = (a + 1) % 3;
+        let w = n_t.cross(out[a] * limit[b] - out[b] * limit[a]).normalize_or_zero();
+        for w in [w, -w] {
+            if w.dot(out[a]) > 0.0 && w.dot(out[b]) > 0.0 {
+                sin_max = sin_max.max(bound_at(w));
+            }
+        }
+    }
+    // A margin for round-off in the normals the rule is later applied to.
+    let face_sin = (1.0 - FACE_COS_TOLERANCE * FACE_COS_TOLERANCE).sqrt();
+    sin_max.is_finite() && sin_max < 0.99 * face_sin
+}
+
 /// The feature of a triangle facing `d` (unit): its front or back face, an edge, or a corner.
 /// Codes: face 0 (front) or 1 (back), edge `k` (corner `k` to `k + 1`), vertex `k`.
 pub fn triangle_feature(v: &[DVec3; 3], d: DVec3) -> Feature {
@@ -221,6 +271,57 @@ mod tests {
         let steep = DVec3::new(0.0, -1.0, 1.0).normalize();
         assert!(!normal_allowed(&TRI, n_t, &[Some(0.2), Some(0.0), Some(0.0)], steep));
         assert!(!normal_allowed(&TRI, n_t, &[None, None, None], -n_t));
+    }
+
+    /// Where `allows_only_face_normals` says so, no normal the internal-edge rule allows leaves the
+    /// face cone: random triangles and bends, and many normals within 10° of the face normal
+    /// (denser near the cone's rim). Where it says no, a normal just over a convex edge's bend is
+    /// allowed and outside the cone in most cases, so the bound is not loose by much.
+    #[test]
+    fn only_face_normals_bound_holds() {
+        let mut rng = crate::scenes::rng::SplitMix64::new(0x6a09_e667_f3bc_c908);
+        let (mut yes, mut no, mut no_with_witness) = (0, 0, 0);
+        for _ in 0..400 {
+            let v = [0, 1, 2]
+                .map(|_| DVec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-0.2, 0.2)));
+            let n_t = (v[1] - v[0]).cross(v[2] - v[0]);
+            if n_t.length() < 0.2 {
+                continue; // too thin to be a sensible mesh triangle
+            }
+            let n_t = n_t.normalize();
+            let bends = [0, 1, 2].map(|_| Some(rng.range(-0.01, 0.03)));
+            let frame = n_t.any_orthonormal_pair();
+            let only_face = allows_only_face_normals(&v, n_t, &bends);
+            let mut witness = false;
+            for _ in 0..4000 {
+                let alpha = rng.range(0.0, 10f64.to_radians()).max(rng.range(0.0, 10f64.to_radians()));
+                let phi = rng.range(0.0, std::f64::consts::TAU);
+                let w = frame.0 * phi.cos() + frame.1 * phi.sin();
+                let n = n_t * alpha.cos() + w * alpha.sin();
+                if normal_allowed(&v, n_t, &bends, n) && n.dot(n_t) < FACE_COS_TOLERANCE {
+                    assert!(
+                        !only_face,
+                        "{v:?} {bends:?}: {n} is allowed, {} from the face",
+                        alpha.to_degrees()
+                    );
+                    witness = true;
+                }
+            }
+            if only_face {
+                yes += 1;
+            } else {
+                no += 1;
+                no_with_witness += usize::from(witness);
+            }
+        }
+        assert!(yes > 50 && no > 50, "only face {yes}, not {no}");
+        assert!(
+            no_with_witness * 10 >= no * 7,
+            "{no_with_witness} of {no} with an allowed normal off the face"
+        );
+        // A boundary edge allows any normal leaning over it.
+        assert!(!allows_only_face_normals(&TRI, DVec3::Z, &[None, Some(0.0), Some(0.0)]));
+        assert!(allows_only_face_normals(&TRI, DVec3::Z, &[Some(0.0), Some(-0.3), Some(0.002)]));
     }
 
     #[test]
