@@ -9,13 +9,13 @@
 //!    contact, and so does a triangle the shape's core lies wholly above with its lowest point
 //!    over the triangle (that point and its foot are then the closest pair, along the face
 //!    normal), and a triangle whose convex edges bend too little for the rule to allow any normal
-//!    outside the face cone ([`allows_only_face_normals`]). A triangle with a convex or boundary
-//!    edge otherwise first runs GJK/EPA between the triangle and the shape's core; if the normal
-//!    found passes the internal-edge rule (see [`super::triangle`]) and is not the face normal,
-//!    the contact is the convex–convex manifold of the triangle and the shape (edge or vertex
-//!    contact). Otherwise it is the face contact:
-//!    the shape's feature facing `−n_T` clipped to the triangle, separations from its plane (with
-//!    a cylinder's or cone's true lowest point added when its cap polygon's corners sit higher).
+//!    outside the face cone ([`super::triangle::allows_only_face_normals`]). A triangle with a
+//!    convex or boundary edge otherwise first runs GJK/EPA between the triangle and the shape's
+//!    core; if the normal found passes the internal-edge rule (see [`super::triangle`]) and is
+//!    not the face normal, the contact is the convex–convex manifold of the triangle and the
+//!    shape (edge or vertex contact). Otherwise it is the face contact: the shape's feature
+//!    facing `−n_T` clipped to the triangle, separations from its plane (with a cylinder's or
+//!    cone's true lowest point added when its cap polygon's corners sit higher).
 //! 3. **One manifold.** The normal is that of the deepest candidate; candidates within 30° of it
 //!    are kept with their separations measured along it, the others dropped. Duplicates (a box
 //!    corner over an edge shared by two triangles) are merged by feature id, and the rest reduced
@@ -38,7 +38,7 @@ use super::feature::{
 use super::gjk::{gjk_within, ConvexPair};
 use super::manifold::{ContactPoint, Manifold};
 use super::support::{Core, Rounded};
-use super::triangle::{allows_only_face_normals, edge_bends, has_sharp_edge, normal_allowed, TriangleSource};
+use super::triangle::{normal_allowed, TriangleSource};
 use crate::math::{DMat3, DVec3, Transform};
 use crate::shape::Shape;
 use smallvec::{smallvec, SmallVec};
@@ -134,16 +134,16 @@ fn triangle_contact<S: TriangleSource + ?Sized>(
             return;
         }
     }
-    let bends = edge_bends(source, t, &v, n_t);
+    let edges = source.edges(t, &v, n_t);
     // The core wholly above the triangle's plane with its lowest point over the triangle: that
     // point and its foot on the triangle are the closest pair (no point of the core is lower, and
     // the foot is on the triangle), so the normal is the face normal and GJK would only confirm
     // it — the face contact below, whatever the edges.
     let face_only = height > 0.0 && over_triangle(lowest, &v, n_t);
     if !face_only
-        && has_sharp_edge(&bends)
-        && !allows_only_face_normals(&v, n_t, &bends)
-        && edge_contact(t, &v, n_t, &bends, shape, b_in_a, margin, out)
+        && edges.sharp
+        && !edges.only_face_normals
+        && edge_contact(t, &v, n_t, &edges.bends, shape, b_in_a, margin, out)
     {
         return;
     }

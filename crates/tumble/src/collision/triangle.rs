@@ -48,6 +48,34 @@ pub trait TriangleSource {
     fn neighbor(&self, t: u32, k: usize) -> Option<u32>;
     /// Calls `visit` with (at least) every triangle whose bounds overlap `aabb_local`.
     fn query(&self, aabb_local: &Aabb, visit: &mut dyn FnMut(u32));
+    /// What the internal-edge rule needs of triangle `t` (corners `v`, front normal `n_t`):
+    /// worked out from the neighbours here, kept from the build by a mesh.
+    fn edges(&self, t: u32, v: &[DVec3; 3], n_t: DVec3) -> TriangleEdges {
+        TriangleEdges::of(self, t, v, n_t)
+    }
+}
+
+/// Triangle `t`'s edges as the internal-edge rule sees them.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct TriangleEdges {
+    /// The bend of each edge ([`edge_bends`]), `None` for a boundary.
+    pub bends: [Option<f64>; 3],
+    /// Some edge is a boundary or convex ([`has_sharp_edge`]).
+    pub sharp: bool,
+    /// No normal but the face's is allowed ([`allows_only_face_normals`]).
+    pub only_face_normals: bool,
+}
+
+impl TriangleEdges {
+    /// Worked out from `source`'s neighbours of `t`.
+    pub fn of<S: TriangleSource + ?Sized>(source: &S, t: u32, v: &[DVec3; 3], n_t: DVec3) -> Self {
+        let bends = edge_bends(source, t, v, n_t);
+        TriangleEdges {
+            bends,
+            sharp: has_sharp_edge(&bends),
+            only_face_normals: allows_only_face_normals(v, n_t, &bends),
+        }
+    }
 }
 
 impl TriangleSource for TriMesh {
@@ -62,6 +90,9 @@ impl TriangleSource for TriMesh {
     }
     fn query(&self, aabb_local: &Aabb, visit: &mut dyn FnMut(u32)) {
         self.bvh().query(aabb_local, visit);
+    }
+    fn edges(&self, t: u32, _: &[DVec3; 3], _: DVec3) -> TriangleEdges {
+        self.triangle_edges(t)
     }
 }
 

@@ -19,7 +19,7 @@ use std::sync::Arc;
 use super::{ConvexHull, Shape};
 use crate::collision::aabb::Aabb;
 use crate::collision::mesh_bvh::MeshBvh;
-use crate::collision::triangle::ray_triangle;
+use crate::collision::triangle::{ray_triangle, TriangleEdges};
 use crate::mass::{validate_closed_mesh, validate_mesh_surface, MassError};
 use crate::math::DVec3;
 
@@ -44,6 +44,9 @@ struct MeshData {
     neighbors: Vec<[u32; 3]>,
     /// `Shape::ConvexHull` of the vertices, for closed meshes on dynamic bodies.
     hull: Option<Shape>,
+    /// Each triangle's edges as the internal-edge rule sees them (they depend on the mesh
+    /// alone: worked out once here, not for every shape that touches the triangle).
+    edges: Vec<TriangleEdges>,
 }
 
 impl TriMesh {
@@ -72,8 +75,27 @@ impl TriMesh {
             })
             .collect();
         let hull = if closed { ConvexHull::new(&vertices).ok().map(Shape::ConvexHull) } else { None };
-        let data = MeshData { bvh: MeshBvh::build(&boxes), normals, neighbors: adjacency(&triangles), hull };
-        Self { vertices, triangles, closed, data: Arc::new(data) }
+        let data = MeshData {
+            bvh: MeshBvh::build(&boxes),
+            normals,
+            neighbors: adjacency(&triangles),
+            hull,
+            edges: Vec::new(),
+        };
+        let mut mesh = Self { vertices, triangles, closed, data: Arc::new(data) };
+        let edges = (0..mesh.triangles.len() as u32)
+            .map(|t| TriangleEdges::of(&mesh, t, &mesh.triangle_points(t), mesh.normal(t)))
+            .collect();
+        if let Some(data) = Arc::get_mut(&mut mesh.data) {
+            data.edges = edges;
+        }
+        mesh
+    }
+
+    /// Triangle `t`'s edges as the internal-edge rule sees them (kept from the build).
+    #[inline]
+    pub fn triangle_edges(&self, t: u32) -> TriangleEdges {
+        self.data.edges[t as usize]
     }
 
     pub fn vertices(&self) -> &[DVec3] {
