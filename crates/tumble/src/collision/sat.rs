@@ -296,12 +296,17 @@ impl<'p, 'h> Frames<'p, 'h> {
         // them up front cost more than it saved: two kilobyte-sized tables written and copied
         // for every query.)
         let (edges_a, edges_b) = (self.a.edges(), self.b.edges());
+        // Each list is filled on the stack, then read through a plain slice: indexing the
+        // small vector itself asks on every read whether it has moved to the heap.
         let mut dirs_a: SmallVec<[DVec3; 32]> = SmallVec::new();
         dirs_a.extend(edges_a.iter().map(|e| self.edge_a(e).1));
+        let dirs_a = &dirs_a[..];
         let mut dirs_b: SmallVec<[DVec3; 32]> = SmallVec::new();
         dirs_b.extend(edges_b.iter().map(|e| self.edge_b(e).1));
+        let dirs_b = &dirs_b[..];
         let mut dir_a_on_b: SmallVec<[f64; 64]> = SmallVec::new();
         dir_a_on_b.resize(self.lists.normals_b.len(), 0.0);
+        let dir_a_on_b = &mut dir_a_on_b[..];
         let centre_a = self.a.interior_point();
         let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
         // The first sign test (`cba·dba < 0`: B's edge lies on B's outline seen along A's edge)
@@ -334,13 +339,16 @@ impl<'p, 'h> Frames<'p, 'h> {
             away_from_a_face
                 .extend(self.lists.normals_a.iter().map(|&n| signs_below_zero(&dirs_b_by_four, n) & live));
         }
+        let face_edges_b = &face_edges_b[..];
+        let away_from_a_face = &away_from_a_face[..];
         let mut passing: SmallVec<[u32; 128]> = SmallVec::new();
         passing.resize(edges_b.len(), 0);
+        let passing = &mut passing[..];
         for (ia, ea) in edges_a.iter().enumerate() {
             let [f0, f1] = ea.faces.map(|f| self.lists.normals_a[f as usize]);
-            normals_dot(&self.lists.normals_b_by_axis, dirs_a[ia], &mut dir_a_on_b);
+            normals_dot(&self.lists.normals_b_by_axis, dirs_a[ia], dir_a_on_b);
             let candidates = if sets {
-                let outline_b = dir_a_on_b.iter().zip(&face_edges_b).fold(0u128, |set, (d, edges)| {
+                let outline_b = dir_a_on_b.iter().zip(face_edges_b).fold(0u128, |set, (d, edges)| {
                     set ^ (edges & 0u128.wrapping_sub(u128::from(d.is_sign_negative())))
                 });
                 let [g0, g1] = ea.faces.map(|f| away_from_a_face[f as usize]);
