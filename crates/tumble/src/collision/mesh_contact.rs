@@ -134,18 +134,20 @@ fn triangle_contact<S: TriangleSource + ?Sized>(
             return;
         }
     }
-    let edges = source.edges(t, &v, n_t);
     // The core wholly above the triangle's plane with its lowest point over the triangle: that
     // point and its foot on the triangle are the closest pair (no point of the core is lower, and
     // the foot is on the triangle), so the normal is the face normal and GJK would only confirm
-    // it — the face contact below, whatever the edges.
+    // it — the face contact below, whatever the edges (which are then not looked up: a height
+    // field works them out per visit).
     let face_only = height > 0.0 && over_triangle(lowest, &v, n_t);
-    if !face_only
-        && edges.sharp
-        && !edges.only_face_normals
-        && edge_contact(t, &v, n_t, &edges.bends, shape, b_in_a, margin, out)
-    {
-        return;
+    if !face_only {
+        let edges = source.edges(t, &v, n_t);
+        if edges.sharp
+            && !edges.only_face_normals
+            && edge_contact(t, &v, n_t, &edges.bends, shape, b_in_a, margin, out)
+        {
+            return;
+        }
     }
     face_contact(t, &v, n_t, shape, b_in_a, down_local, margin, out);
 }
