@@ -89,6 +89,11 @@ pub(crate) struct Slot<T> {
 
 impl<T> Slot<T> {
     /// The live object here, if any.
+    pub(crate) fn value(&self) -> Option<&T> {
+        self.value.as_ref()
+    }
+
+    /// The live object here, if any.
     pub(crate) fn value_mut(&mut self) -> Option<&mut T> {
         self.value.as_mut()
     }
@@ -185,6 +190,12 @@ impl<T> SlotPool<T> {
         self.slots.iter().enumerate().filter_map(|(i, s)| {
             s.value.as_ref().map(|v| (RawId { index: i as u32, generation: s.generation }, v))
         })
+    }
+
+    /// Every slot, live or free, in slot order (slot `i` at index `i`).
+    #[cfg(test)]
+    pub(crate) fn slots(&self) -> &[Slot<T>] {
+        &self.slots
     }
 
     /// Every slot, live or free, in slot order (slot `i` at index `i`): to split between threads.

@@ -113,6 +113,10 @@ pub struct World {
     /// The step's joint trees (`dynamics/joint_tree/`), kept to reuse their allocations.
     #[serde(skip)]
     pub(crate) joint_trees: crate::dynamics::joint_tree::JointTrees,
+    /// The solved joints by component, for the joint stages on the threads (kept to reuse its
+    /// allocations).
+    #[serde(skip)]
+    pub(crate) joint_components: crate::dynamics::joint_components::JointComponents,
     /// The colouring of the contact rows (`dynamics/colouring.rs`), kept to reuse its allocations.
     #[serde(skip)]
     pub(crate) contact_colouring: crate::dynamics::colouring::ContactColouring,
@@ -235,6 +239,7 @@ impl World {
             proxies_in_place_for: None,
             body_partition: Default::default(),
             joint_trees: Default::default(),
+            joint_components: Default::default(),
             contact_colouring: Default::default(),
             gravity: check_vec("gravity", def.gravity)?,
             time: 0.0,

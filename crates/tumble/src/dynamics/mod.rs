@@ -10,6 +10,7 @@ pub(crate) mod contact_friction;
 pub(crate) mod contact_solver;
 pub(crate) mod island;
 pub mod joint;
+pub(crate) mod joint_components;
 pub(crate) mod joint_tree;
 pub mod lcp;
 pub mod material;

@@ -197,19 +197,6 @@ impl StepContext {
     }
 }
 
-/// Two distinct elements of a slice, mutably.
-#[inline]
-pub(crate) fn pair_mut<T>(items: &mut [T], i: usize, j: usize) -> (&mut T, &mut T) {
-    debug_assert_ne!(i, j, "a constraint needs two different bodies");
-    if i < j {
-        let (lo, hi) = items.split_at_mut(j);
-        (&mut lo[i], &mut hi[0])
-    } else {
-        let (lo, hi) = items.split_at_mut(i);
-        (&mut hi[0], &mut lo[j])
-    }
-}
-
 /// Contacts below which they are prepared on one thread.
 pub(crate) const PARALLEL_MIN_CONTACTS: usize = 128;
 
@@ -342,7 +329,9 @@ impl World {
                 }
             });
         }
-        let has_joints = self.joints.iter().any(|(_, joint)| joint.solving);
+        let mut joint_components = std::mem::take(&mut self.joint_components);
+        joint_components.build(&self.joints, &bodies);
+        let has_joints = !joint_components.is_empty();
         let mut partition = std::mem::take(&mut self.body_partition);
         partition.split(&flags, &solved, &self.joints);
 
@@ -359,9 +348,17 @@ impl World {
         let mut blocks = std::mem::take(&mut self.still_blocks);
         // Each block is written over at the step's start (`fill_blocks`).
         blocks.resize_with(if in_lanes { contacts.len().div_ceil(GROUP) } else { 0 }, StillBlock::default);
-        let mut serial = (&mut self.joints, &mut trees);
         let lists = (&partition.constrained[..], &partition.unconstrained[..]);
-        let data = SolveData::new(&mut bodies, lists, &mut contacts, &mut blocks, &colouring, &mut serial);
+        let joint_lists = (self.joints.slots_mut(), &joint_components);
+        let data = SolveData::new(
+            &mut bodies,
+            lists,
+            &mut contacts,
+            &mut blocks,
+            &colouring,
+            joint_lists,
+            &mut trees,
+        );
         let ctx = &ctx;
         self.profile.lap(Phase::SolveSetUp, clock);
         let projection_iterations = self.solver_settings.joint_projection_iterations;
@@ -376,9 +373,11 @@ impl World {
             data.unconstrained_bodies(thread, |bodies| {
                 SolverBody::integrate_unconstrained(bodies, ctx.gravity, ctx.h, ctx.substeps)
             });
+            // Joints component by component, the components shared between the threads
+            // (joint_components.rs).
             let joint_stage = |f: &dyn Fn(&mut Joint, &mut SolverBody, &mut SolverBody)| {
                 if has_joints {
-                    data.serial(thread, |(joints, _), bodies| for_each_joint(joints, bodies, f));
+                    data.joints_with_bodies(thread, f);
                 }
             };
             for substep in 0..ctx.substeps {
@@ -396,7 +395,7 @@ impl World {
                     // The trees before the contacts, which keep the last word as they do in the
                     // relax pass (`docs/joint-tree.md`, "Where it runs in the step").
                     if has_joints {
-                        data.serial(thread, |(joints, trees), bodies| {
+                        data.serial(thread, |trees, joints, bodies| {
                             trees.solve(joints, bodies, tree_bias_rate)
                         });
                     }
@@ -409,7 +408,7 @@ impl World {
                 data.bodies(thread, |body| body.integrate_position(ctx.h));
                 // Joint trees back onto their constraints (before the relax pass reads the poses).
                 if has_joints && ctx.project_joint_trees {
-                    data.serial(thread, |(joints, trees), bodies| {
+                    data.serial(thread, |trees, joints, bodies| {
                         trees.project_positions(
                             joints,
                             bodies,
@@ -483,6 +482,7 @@ impl World {
         self.still_blocks = blocks;
         self.body_partition = partition;
         self.joint_trees = trees;
+        self.joint_components = joint_components;
 
         // Store: constraint forces and joint breaking, then write the bodies back.
         for (_, joint) in self.joints.iter_mut() {
@@ -656,19 +656,4 @@ fn prepare_contact(
         contact.material,
         ctx,
     );
-}
-
-/// Calls `f` for every active joint with its two solver bodies, in joint-slot order.
-fn for_each_joint(
-    joints: &mut SlotPool<Joint>,
-    bodies: &mut [SolverBody],
-    f: &dyn Fn(&mut Joint, &mut SolverBody, &mut SolverBody),
-) {
-    for (_, joint) in joints.iter_mut() {
-        if !joint.solving {
-            continue;
-        }
-        let (a, b) = pair_mut(bodies, joint.body_a.index(), joint.body_b.index());
-        f(joint, a, b);
-    }
 }

@@ -8,9 +8,10 @@
 //! nanoseconds.
 //!
 //! Shares never change a number: a body stage treats every body on its own, and a colour's
-//! constraints share no moving body, so which thread does what is invisible in the result. Stages
-//! that are not split (joints, joint trees, small colours, the overflow colour) run on the first
-//! thread while the others wait.
+//! constraints share no moving body, and neither do two components of joints
+//! (joint_components.rs), so which thread does what is invisible in the result. Stages that are
+//! not split (joint trees, small colours, the overflow colour) run on the first thread while the
+//! others wait.
 
 #![allow(unsafe_code)] // `Shared`: threads write distinct elements between barriers.
 
@@ -19,7 +20,10 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use crate::dynamics::colouring::ContactColouring;
 use crate::dynamics::contact_solver::{ContactConstraint, GroupVelocities, StillBlock, GROUP};
+use crate::dynamics::joint::Joint;
+use crate::dynamics::joint_components::JointComponents;
 use crate::dynamics::solver_body::SolverBody;
+use crate::id::Slot;
 use crate::step_threads::StepThreads;
 
 /// Spins before a waiting thread starts yielding its core (on a machine with fewer cores than
@@ -137,19 +141,26 @@ pub(crate) struct SolveData<'a, S> {
     /// the contacts go in groups): see `fill_blocks`.
     blocks: Shared<'a, StillBlock>,
     colouring: &'a ContactColouring,
-    /// The state the stages that are not split work on (joints, joint trees).
+    /// The joint pool's slots, by slot.
+    joints: Shared<'a, Slot<Joint>>,
+    /// The solved joints by component: a thread's share of them is its own in a joint stage.
+    joint_components: &'a JointComponents,
+    /// The state the stages that are not split work on (the joint trees).
     serial: Shared<'a, S>,
 }
 
 impl<'a, S: Send> SolveData<'a, S> {
     /// `contacts` must be in the order `colouring` sorted them into; `constrained` and
-    /// `unconstrained` list body slots, each strictly increasing (so no slot twice).
+    /// `unconstrained` list body slots, each strictly increasing (so no slot twice);
+    /// `joint_components` lists slots of live joints (each once).
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         bodies: &'a mut [SolverBody],
         (constrained, unconstrained): (&'a [u32], &'a [u32]),
         contacts: &'a mut [ContactConstraint],
         blocks: &'a mut [StillBlock],
         colouring: &'a ContactColouring,
+        (joints, joint_components): (&'a mut [Slot<Joint>], &'a JointComponents),
         serial: &'a mut S,
     ) -> Self {
         assert!(
@@ -167,8 +178,32 @@ impl<'a, S: Send> SolveData<'a, S> {
             contacts: Shared::new(contacts),
             blocks: Shared::new(blocks),
             colouring,
+            joints: Shared::new(joints),
+            joint_components,
             serial: Shared::new(std::slice::from_mut(serial)),
         }
+    }
+
+    /// `f` on every solved joint with its two bodies, each thread its share of the joints'
+    /// components (joint_components.rs); a body that is not dynamic as a private copy, as for
+    /// the contacts.
+    pub fn joints_with_bodies(
+        &self,
+        thread: SolverThread,
+        f: impl Fn(&mut Joint, &mut SolverBody, &mut SolverBody),
+    ) {
+        for &slot in self.joint_components.share(thread) {
+            // SAFETY: each joint slot appears once in the components, and this thread's share of
+            // them is its own until the barrier.
+            let joint = unsafe { &mut self.joints.slice(slot as usize..slot as usize + 1)[0] };
+            let joint = joint.value_mut().expect("solved joints are live");
+            // SAFETY: the dynamic bodies of a component are its own (no other component's joint
+            // has one), so this thread's until the barrier; `with_pair` copies the others.
+            unsafe {
+                self.bodies.with_pair(joint.body_a.index(), joint.body_b.index(), |a, b| f(joint, a, b))
+            };
+        }
+        thread.sync();
     }
 
     /// `f` on every constrained body, each thread its share.
@@ -341,11 +376,16 @@ impl<'a, S: Send> SolveData<'a, S> {
         }
     }
 
-    /// `f` on the first thread with the serial state and all bodies; the others wait.
-    pub fn serial(&self, thread: SolverThread, f: impl FnOnce(&mut S, &mut [SolverBody])) {
+    /// `f` on the first thread with the serial state, the joints' slots and all bodies; the
+    /// others wait.
+    pub fn serial(
+        &self,
+        thread: SolverThread,
+        f: impl FnOnce(&mut S, &mut [Slot<Joint>], &mut [SolverBody]),
+    ) {
         if thread.is_first() {
             // SAFETY: the first thread alone, until the barrier.
-            unsafe { f(&mut self.serial.all()[0], self.bodies.all()) };
+            unsafe { f(&mut self.serial.all()[0], self.joints.all(), self.bodies.all()) };
         }
         thread.sync();
     }

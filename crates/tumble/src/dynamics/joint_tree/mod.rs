@@ -36,7 +36,7 @@ use crate::body::Body;
 use crate::dynamics::joint::equality::EqualityRows;
 use crate::dynamics::joint::Joint;
 use crate::dynamics::solver_body::SolverBody;
-use crate::id::{RawId, SlotPool};
+use crate::id::{RawId, Slot, SlotPool};
 use crate::math::{DMat3, DVec3};
 use block::{Block, BlockVector, Ldlt, MAX_DIM};
 
@@ -140,7 +140,9 @@ fn moves(body: &SolverBody) -> bool {
     body.has_mass_matrix()
 }
 
-fn find(parents: &mut [u32], mut i: u32) -> u32 {
+/// The root of `i` in the union–find forest `parents` (each entry its parent; a root points at
+/// itself), halving the path on the way.
+pub(crate) fn find(parents: &mut [u32], mut i: u32) -> u32 {
     while parents[i as usize] != i {
         let grandparent = parents[parents[i as usize] as usize];
         parents[i as usize] = grandparent;
@@ -394,7 +396,7 @@ impl JointTrees {
     /// One exact solve of every tree's equality rows: makes each row's velocity `−β C` (`bias_rate`
     /// β; 0 in the relax pass, and in every pass while the position projection holds the trees),
     /// updates the bodies' velocities and adds the impulses to the joints' accumulated ones.
-    pub fn solve(&mut self, joints: &mut SlotPool<Joint>, bodies: &mut [SolverBody], bias_rate: f64) {
+    pub fn solve(&mut self, joints: &mut [Slot<Joint>], bodies: &mut [SolverBody], bias_rate: f64) {
         if self.nodes.is_empty() {
             return;
         }
@@ -409,7 +411,7 @@ impl JointTrees {
                     body.w += DVec3::new(node.x[3], node.x[4], node.x[5]);
                 }
                 NodeKind::Joint { slot } => {
-                    let joint = joints_slot_mut(joints, slot);
+                    let joint = joints[slot as usize].value_mut().expect("tree joints are live");
                     let mut lambda = [0.0; MAX_DIM];
                     for (l, x) in lambda.iter_mut().zip(&node.x).take(node.dim) {
                         *l = -x;
@@ -443,7 +445,7 @@ impl JointTrees {
     /// its joints' rows as they were (`restore_angular_momentum`).
     pub fn project_positions(
         &mut self,
-        joints: &SlotPool<Joint>,
+        joints: &[Slot<Joint>],
         bodies: &mut [SolverBody],
         world_bodies: &SlotPool<Body>,
         tolerance: f64,
@@ -554,7 +556,7 @@ impl JointTrees {
     /// The projection itself (see `project_positions`).
     fn project(
         &mut self,
-        joints: &SlotPool<Joint>,
+        joints: &[Slot<Joint>],
         bodies: &mut [SolverBody],
         tolerance: f64,
         max_iterations: u32,
@@ -615,7 +617,7 @@ impl JointTrees {
     /// for the bodies' state now; returns the largest position error of any row.
     fn assemble(
         &mut self,
-        joints: &SlotPool<Joint>,
+        joints: &[Slot<Joint>],
         bodies: &[SolverBody],
         target: Target,
         matrix: bool,
@@ -645,7 +647,7 @@ impl JointTrees {
                     }
                 }
                 NodeKind::Joint { slot } => {
-                    let joint = joints.iter_slot(slot as usize).expect("tree joints are live");
+                    let joint = joints[slot as usize].value().expect("tree joints are live");
                     let (ia, ib) = (joint.body_a.index(), joint.body_b.index());
                     let has_rows = joint.equality_rows_into(&bodies[ia], &bodies[ib], &mut rows);
                     debug_assert!(has_rows, "tree joints have equality rows");
@@ -761,11 +763,6 @@ impl JointTrees {
 /// `u vᵀ`.
 fn outer(u: DVec3, v: DVec3) -> DMat3 {
     DMat3::from_cols(u * v.x, u * v.y, u * v.z)
-}
-
-fn joints_slot_mut(joints: &mut SlotPool<Joint>, slot: u32) -> &mut Joint {
-    let id = joints.id_of_slot(slot as usize).expect("tree joints are live");
-    joints.get_mut(id).expect("tree joints are live")
 }
 
 #[cfg(test)]
