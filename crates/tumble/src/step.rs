@@ -28,7 +28,7 @@ impl World {
         // few contacts and bodies, as in a lone chain): taking them only cost (a 100-link chain
         // ran 5–9% slower on two threads than on one).
         let pool = self.pool.clone();
-        let step_threads = pool.as_deref().filter(|_| self.worth_step_threads()).and_then(StepThreads::begin);
+        let step_threads = pool.as_deref().filter(|_| self.worth_step_threads()).map(StepThreads::begin);
         let threads = step_threads.as_ref();
 
         // Broad phase: move proxies (unless the last step's finalize left them in place for this

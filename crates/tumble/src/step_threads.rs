@@ -60,13 +60,10 @@ pub(crate) struct StepThreads {
 }
 
 impl StepThreads {
-    /// Takes `pool`'s threads for a step: all but one wait for work beside the calling thread,
-    /// which makes as many threads as the pool has. `None` for a pool of one thread.
-    pub fn begin(pool: &rayon::ThreadPool) -> Option<StepThreads> {
-        let threads = pool.current_num_threads();
-        if threads < 2 {
-            return None;
-        }
+    /// Takes all of `pool`'s threads for a step: they wait for work beside the calling thread,
+    /// which makes one thread more than the pool has.
+    pub fn begin(pool: &rayon::ThreadPool) -> StepThreads {
+        let threads = pool.current_num_threads() + 1;
         let control = Arc::new(Control {
             threads,
             posted: AtomicUsize::new(0),
@@ -80,7 +77,7 @@ impl StepThreads {
             let control = Arc::clone(&control);
             pool.spawn(move || serve(&control, index));
         }
-        Some(StepThreads { control })
+        StepThreads { control }
     }
 
     /// Runs `work` on every thread, the calling thread as thread 0, and returns when all have
@@ -211,8 +208,8 @@ mod tests {
 
     #[test]
     fn every_chunk_is_done_once_whatever_the_threads() {
-        let pool = pool(3);
-        let threads = StepThreads::begin(&pool).expect("three threads");
+        let pool = pool(2);
+        let threads = StepThreads::begin(&pool);
         for round in 0..50 {
             let mut items: Vec<usize> = vec![0; 1000 + round];
             let mut marks = vec![0u32; items.len()];
@@ -229,8 +226,8 @@ mod tests {
 
     #[test]
     fn stages_meet_at_barriers_and_shares_cover_the_range() {
-        let pool = pool(2);
-        let threads = StepThreads::begin(&pool).expect("two threads");
+        let pool = pool(1);
+        let threads = StepThreads::begin(&pool);
         let counts: Vec<AtomicUsize> = (0..100).map(|_| AtomicUsize::new(0)).collect();
         let stage_one_done = AtomicUsize::new(0);
         threads.run(|thread| {
@@ -247,9 +244,9 @@ mod tests {
 
     #[test]
     fn a_panic_on_a_pool_thread_is_passed_on_and_the_next_step_works() {
-        let pool = pool(2);
+        let pool = pool(1);
         let result = catch_unwind(AssertUnwindSafe(|| {
-            let threads = StepThreads::begin(&pool).expect("two threads");
+            let threads = StepThreads::begin(&pool);
             threads.run(|thread| {
                 if !thread.is_first() {
                     panic!("pool thread fails");
@@ -259,7 +256,7 @@ mod tests {
         }));
         let payload = result.expect_err("the panic is passed on");
         assert_eq!(payload.downcast_ref::<&str>(), Some(&"pool thread fails"));
-        let threads = StepThreads::begin(&pool).expect("two threads");
+        let threads = StepThreads::begin(&pool);
         let sum = AtomicUsize::new(0);
         threads.run(|thread| {
             sum.fetch_add(thread.share(0..10).len(), Ordering::Relaxed);

@@ -278,7 +278,8 @@ impl World {
 
     /// The number of threads the collision pipeline and the solver use (1: the calling thread only).
     pub fn threads(&self) -> usize {
-        self.pool.as_ref().map_or(1, |p| p.current_num_threads())
+        // The calling thread is the step's first (step_threads.rs).
+        self.pool.as_ref().map_or(1, |p| p.current_num_threads() + 1)
     }
 
     /// Runs the collision pipeline and the solver on `threads` threads of a pool owned by the
@@ -290,8 +291,11 @@ impl World {
         self.pool = if threads <= 1 {
             None
         } else {
+            // The pool holds the threads beside the calling one, which does the first share of
+            // every stage: a pool of `threads` workers left one idle, which woke when the step
+            // took the others and spun looking for work — a third thread on the cores.
             let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
+                .num_threads(threads - 1)
                 .thread_name(|i| format!("tumble-{i}"))
                 .build()
                 .map_err(|e| WorldError::InvalidSettings(format!("cannot start {threads} threads: {e}")))?;

@@ -348,8 +348,8 @@ mod tests {
     /// few hundred moved again.
     #[test]
     fn pairs_found_on_threads_are_the_pairs_found_on_one() {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().expect("pool");
-        let threads = StepThreads::begin(&pool).expect("three threads");
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("pool");
+        let threads = StepThreads::begin(&pool);
         let mut bp = BroadPhase::new(0.1);
         let at = |k: usize, shift: f64| {
             let (i, j, l) = ((k % 20) as f64, ((k / 20) % 10) as f64, (k / 200) as f64);
