@@ -91,6 +91,12 @@ impl StillBlock {
         }
     }
 
+    /// Whether the four manifolds' state is here (taken by a pass as a group), not in them.
+    #[inline]
+    pub(crate) fn holds_state(&self) -> bool {
+        self.state_here
+    }
+
     /// `ContactConstraint::update_steady_load` of the four manifolds, whose state must be here.
     pub(crate) fn update_steady_loads(&mut self, steady_load_time: f64, h: f64) {
         debug_assert!(self.state_here);

@@ -444,12 +444,14 @@ impl World {
                         },
                     );
                 }
-                // The stages below read the contacts themselves, which the groups' state then
-                // goes back to.
+                // Without a relax pass the steady loads learn here, each group's in its block
+                // (the state stays there for the next substep's passes: given back to the
+                // contacts and taken again each substep, it was 7% of the matched pyramid).
                 if learn && ctx.relax_iterations == 0 {
-                    data.give_back_block_states(thread);
-                    data.contacts(thread, |c| c.update_steady_load(ctx.steady_load_time, ctx.h));
+                    data.update_steady_loads(thread, ctx.steady_load_time, ctx.h);
                 }
+                // Restitution reads the contacts themselves, which the groups' state then goes
+                // back to.
                 if restitution {
                     data.give_back_block_states(thread);
                     let last = substep + 1 == ctx.substeps;

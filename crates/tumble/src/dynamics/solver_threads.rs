@@ -283,6 +283,22 @@ impl<'a, S: Send> SolveData<'a, S> {
         self.each_block(thread, |block, contacts| block.give_back_state(contacts));
     }
 
+    /// `ContactConstraint::update_steady_load` of every contact, each thread its share: a group's
+    /// in its block where the block holds their state (`StillBlock::update_steady_loads`, the
+    /// same arithmetic in lanes), so the state stays there for the next substep's passes.
+    pub fn update_steady_loads(&self, thread: SolverThread, steady_load_time: f64, h: f64) {
+        if self.blocks.len == 0 {
+            return self.contacts(thread, |c| c.update_steady_load(steady_load_time, h));
+        }
+        self.each_block(thread, |block, contacts| {
+            if block.holds_state() {
+                block.update_steady_loads(steady_load_time, h);
+            } else {
+                contacts.iter_mut().for_each(|c| c.update_steady_load(steady_load_time, h));
+            }
+        });
+    }
+
     /// `f` on every block with its (up to four) contacts, each thread its share.
     fn each_block(&self, thread: SolverThread, f: impl Fn(&mut StillBlock, &mut [ContactConstraint])) {
         if self.blocks.len == 0 {
