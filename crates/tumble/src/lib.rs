@@ -24,6 +24,7 @@ pub mod snapshot;
 mod state_hash;
 mod step;
 mod step_threads;
+mod waiting;
 pub mod world;
 
 pub use body::{Body, BodyDef, BodyKind, BodyState};

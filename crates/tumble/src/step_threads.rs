@@ -8,7 +8,8 @@
 //! scene.
 //!
 //! So a step takes the pool's threads once, at its start ([`StepThreads::begin`]): they then wait
-//! for work by spinning (yielding their core between checks after a while) instead of sleeping,
+//! for work by spinning (yielding their core between checks after a while, and sleeping only
+//! after half a millisecond: waiting.rs) instead of going back to sleep in the pool,
 //! and the step's own thread posts each piece of work to them ([`StepThreads::run`]) and does its
 //! share as thread 0. The threads wake while the step's first serial stages run, and are let go
 //! when the step ends (on drop). Every piece of work is finished by all threads before `run`
@@ -25,7 +26,8 @@ use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
-use crate::dynamics::solver_threads::{backoff, Shared, SolverThread, SpinBarrier, RELEASED};
+use crate::dynamics::solver_threads::{Shared, SolverThread, SpinBarrier, RELEASED};
+use crate::waiting::Waiting;
 
 /// A piece of work for every thread: called once on each, with its place among them.
 type Work<'a> = dyn Fn(SolverThread) + Sync + 'a;
@@ -43,6 +45,8 @@ struct Control {
     closing: AtomicBool,
     /// The barrier the pieces' stages meet at.
     barrier: SpinBarrier,
+    /// Where the threads wait for `posted`, `finished` and `closing` (woken by each change).
+    waiting: Waiting,
     /// The first panic of a pool thread, to pass on from `run`.
     panic: Mutex<Option<Box<dyn Any + Send>>>,
 }
@@ -71,6 +75,7 @@ impl StepThreads {
             finished: AtomicUsize::new(0),
             closing: AtomicBool::new(false),
             barrier: SpinBarrier::new(threads),
+            waiting: Waiting::default(),
             panic: Mutex::new(None),
         });
         for index in 1..threads {
@@ -96,14 +101,14 @@ impl StepThreads {
             *control.work.get() = Some(erased);
         }
         let number = control.posted.fetch_add(1, Ordering::Release) + 1;
+        control.waiting.wake_all();
         let own = catch_unwind(AssertUnwindSafe(|| work(SolverThread::new(0, &control.barrier))));
         if own.is_err() {
             control.barrier.poison();
         }
-        let mut spins = 0;
-        while control.finished.load(Ordering::Acquire) < number * (control.threads - 1) {
-            backoff(&mut spins);
-        }
+        control
+            .waiting
+            .wait_until(|| control.finished.load(Ordering::Acquire) >= number * (control.threads - 1));
         let theirs = control.panic.lock().map(|mut p| p.take()).unwrap_or(None);
         // Pass on the panic that caused the others (they only stopped waiting for it).
         match (own, theirs) {
@@ -166,6 +171,7 @@ pub(crate) fn for_each_chunk_of<T: Send>(
 impl Drop for StepThreads {
     fn drop(&mut self) {
         self.control.closing.store(true, Ordering::Release);
+        self.control.waiting.wake_all();
     }
 }
 
@@ -173,12 +179,11 @@ impl Drop for StepThreads {
 fn serve(control: &Control, index: usize) {
     let mut done = 0;
     loop {
-        let mut spins = 0;
-        while control.posted.load(Ordering::Acquire) == done {
-            if control.closing.load(Ordering::Acquire) {
-                return;
-            }
-            backoff(&mut spins);
+        control.waiting.wait_until(|| {
+            control.posted.load(Ordering::Acquire) != done || control.closing.load(Ordering::Acquire)
+        });
+        if control.posted.load(Ordering::Acquire) == done {
+            return; // closing
         }
         done += 1;
         // SAFETY: see `run`: the piece is alive and not rewritten until this thread has
@@ -195,6 +200,7 @@ fn serve(control: &Control, index: usize) {
             }
         }
         control.finished.fetch_add(1, Ordering::Release);
+        control.waiting.wake_all();
     }
 }
 

@@ -286,7 +286,8 @@ impl World {
     /// world (1 or 0: on the calling thread, no pool). The work is split by the scene, never by
     /// the thread count (the solver's by graph colouring, `dynamics/colouring.rs`), and merged in
     /// a fixed order, so every thread count gives bit-identical results. The solver's threads spin
-    /// while they wait for each other within a step: more threads than free cores slows it down.
+    /// while they wait for each other within a step, and sleep after half a millisecond
+    /// (`waiting.rs`): more threads than free cores gains nothing, but costs little.
     pub fn set_threads(&mut self, threads: usize) -> Result<(), WorldError> {
         self.pool = if threads <= 1 {
             None

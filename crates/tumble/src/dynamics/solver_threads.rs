@@ -25,33 +25,19 @@ use crate::dynamics::joint_components::JointComponents;
 use crate::dynamics::solver_body::SolverBody;
 use crate::id::Slot;
 use crate::step_threads::StepThreads;
-
-/// Spins before a waiting thread starts yielding its core (on a machine with fewer cores than
-/// threads, the thread it waits for may need that core).
-const SPINS_BEFORE_YIELD: u32 = 200;
+use crate::waiting::Waiting;
 
 /// The panic of a thread released from a barrier because another thread panicked.
 pub(crate) const RELEASED: &str = "another solver thread panicked";
 
-/// One round of waiting: a spin, or once a thread has spun [`SPINS_BEFORE_YIELD`] times, a
-/// yield of its core.
-#[inline]
-pub(crate) fn backoff(spins: &mut u32) {
-    if *spins < SPINS_BEFORE_YIELD {
-        *spins += 1;
-        std::hint::spin_loop();
-    } else {
-        std::thread::yield_now();
-    }
-}
-
-/// A barrier for a fixed number of threads that spins instead of sleeping.
+/// A barrier for a fixed number of threads that spins before it sleeps (waiting.rs).
 pub(crate) struct SpinBarrier {
     threads: usize,
     arrived: AtomicUsize,
     generation: AtomicUsize,
     /// Set when a thread panics, so the others stop waiting for it.
     poisoned: AtomicBool,
+    waiting: Waiting,
 }
 
 impl SpinBarrier {
@@ -61,6 +47,7 @@ impl SpinBarrier {
             arrived: AtomicUsize::new(0),
             generation: AtomicUsize::new(0),
             poisoned: AtomicBool::new(false),
+            waiting: Waiting::default(),
         }
     }
 
@@ -71,19 +58,20 @@ impl SpinBarrier {
         if self.arrived.fetch_add(1, Ordering::AcqRel) + 1 == self.threads {
             self.arrived.store(0, Ordering::Relaxed);
             self.generation.fetch_add(1, Ordering::Release);
+            self.waiting.wake_all();
             return;
         }
-        let mut spins = 0;
-        while self.generation.load(Ordering::Acquire) == generation {
-            if self.poisoned.load(Ordering::Relaxed) {
-                std::panic::panic_any(RELEASED);
-            }
-            backoff(&mut spins);
+        self.waiting.wait_until(|| {
+            self.generation.load(Ordering::Acquire) != generation || self.poisoned.load(Ordering::Acquire)
+        });
+        if self.generation.load(Ordering::Acquire) == generation {
+            std::panic::panic_any(RELEASED);
         }
     }
 
     pub fn poison(&self) {
-        self.poisoned.store(true, Ordering::Relaxed);
+        self.poisoned.store(true, Ordering::Release);
+        self.waiting.wake_all();
     }
 }
 
