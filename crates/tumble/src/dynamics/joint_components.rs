@@ -13,8 +13,8 @@
 //! A scene of many figures splits into many components; a single figure stays on one thread, as
 //! before.
 
+use crate::dynamics::island::UnionFind;
 use crate::dynamics::joint::Joint;
-use crate::dynamics::joint_tree::find;
 use crate::dynamics::solver_body::SolverBody;
 use crate::dynamics::solver_threads::SolverThread;
 use crate::id::SlotPool;
@@ -42,16 +42,12 @@ impl JointComponents {
     /// Groups the joints marked `solving` by the dynamic bodies (`bodies`, by slot) they connect.
     pub fn build(&mut self, joints: &SlotPool<Joint>, bodies: &[SolverBody]) {
         let solving = || joints.iter().filter(|(_, joint)| joint.solving);
-        self.parent.clear();
-        self.parent.extend(0..bodies.len() as u32);
         let dynamic = |slot: usize| bodies[slot].is_dynamic();
+        let mut sets = UnionFind::new(bodies.len(), &mut self.parent);
         for (_, joint) in solving() {
             let (a, b) = (joint.body_a.index(), joint.body_b.index());
             if dynamic(a) && dynamic(b) {
-                let (ra, rb) = (find(&mut self.parent, a as u32), find(&mut self.parent, b as u32));
-                // The lower root wins: the result does not depend on which is which anyway.
-                let (low, high) = (ra.min(rb), ra.max(rb));
-                self.parent[high as usize] = low;
+                sets.union(a as u32, b as u32);
             }
         }
         // Number the components in the order of their first joint; a joint with no dynamic body
@@ -71,7 +67,7 @@ impl JointComponents {
             };
             let component = match end {
                 Some(end) => {
-                    let root = find(&mut self.parent, end as u32) as usize;
+                    let root = sets.find(end as u32) as usize;
                     if self.component_of_root[root] == NONE {
                         self.component_of_root[root] = components;
                         components += 1;

@@ -140,9 +140,7 @@ fn moves(body: &SolverBody) -> bool {
     body.has_mass_matrix()
 }
 
-/// The root of `i` in the union–find forest `parents` (each entry its parent; a root points at
-/// itself), halving the path on the way.
-pub(crate) fn find(parents: &mut [u32], mut i: u32) -> u32 {
+fn find(parents: &mut [u32], mut i: u32) -> u32 {
     while parents[i as usize] != i {
         let grandparent = parents[parents[i as usize] as usize];
         parents[i as usize] = grandparent;
