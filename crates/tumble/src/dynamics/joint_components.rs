@@ -30,7 +30,8 @@ pub(crate) struct JointComponents {
     order: Vec<u32>,
     /// Where each component starts in `order`, then `order.len()`.
     starts: Vec<u32>,
-    /// Union–find over body slots (each entry its parent; a root points at itself).
+    /// Scratch: the union–find over body slots, then the counting sort's next place per
+    /// component.
     parent: Vec<u32>,
     /// Per body slot that roots a component: the component's index (`NONE` otherwise).
     component_of_root: Vec<u32>,
@@ -92,6 +93,7 @@ impl JointComponents {
         }
         self.order.clear();
         self.order.resize(self.component_of_joint.len(), 0);
+        // The union–find is done with: its buffer holds the next place of each component.
         let mut next = std::mem::take(&mut self.parent);
         next.clear();
         next.extend_from_slice(&self.starts[..components as usize]);
