@@ -346,7 +346,7 @@ impl ContactManager {
                 }
             }
         }
-        self.contacts.compact_if_sparse(Some(threads));
+        self.contacts.compact_if_sparse();
         self.events.finish(&self.contacts);
     }
 

@@ -14,13 +14,15 @@
 //! they are more than [`DROPPED_SHARE`] of the array. Compacting at every drop moved most of the
 //! array for a few contacts: the pile of falling balls drops about 35 of its 12,500 contacts a
 //! step, and the compaction moved some 8,900 kilobyte contacts, 340 µs of a step on the step's
-//! own thread while the others waited. Now it moves them about once in 20 steps; the walks skip
-//! the dropped places, which they read anyway. (Filling each dropped contact's place with the
-//! last contact instead also moves little, but scatters the order: contacts next to each other
-//! no longer touch bodies next to each other, and a new order changes how the solver's colours
-//! fall, hence every result.) With threads, the compaction copies the live contacts in chunks
-//! into a second array (the one the last compaction left) and swaps the two: about 1 ms for the
-//! pile's contacts on two threads, against some 3 ms in place on one.
+//! own thread while the others waited. Now it moves them once in 7 to 20 steps (7 while most of
+//! the balls land); the walks skip the dropped places, which they read anyway. (Filling each
+//! dropped contact's place with the last contact instead also moves little, but scatters the
+//! order: contacts next to each other no longer touch bodies next to each other, and a new order
+//! changes how the solver's colours fall, hence every result.) The compaction runs on the step's thread, in place, even in a step
+//! with threads: copying the live contacts in chunks on the threads into a second array took
+//! twice as long as moving them in place on one (the 2,000 balls' 13,000 contacts: 1.5–2.1 ms
+//! against 1.0–1.2 ms, measured 2026-12-07) — writing a second array of 11 MB costs more than
+//! the shift within the first.
 //!
 //! The order of the live contacts is a pure function of the history of the world — the pairs made
 //! in each step, in the broad phase's order — so it is the same on every run and for any thread
@@ -31,7 +33,6 @@ use rustc_hash::FxHashSet;
 
 use super::broad_phase::ProxyKey;
 use crate::dynamics::contact::Contact;
-use crate::step_threads::{for_each_chunk_of, StepThreads};
 
 /// The pair of proxies of a contact, lower key first.
 pub(crate) type ProxyPair = (ProxyKey, ProxyKey);
@@ -40,9 +41,6 @@ pub(crate) type ProxyPair = (ProxyKey, ProxyKey);
 /// away, as the divisor of the array's length: a sixteenth.
 const DROPPED_SHARE: usize = 16;
 
-/// Places handed to one task of the threaded compaction ([`ContactStore::compact_if_sparse`]).
-const COMPACT_CHUNK: usize = 256;
-
 #[derive(Clone, Debug, Default, serde::Deserialize)]
 #[serde(from = "Vec<Contact>")]
 pub(crate) struct ContactStore {
@@ -50,43 +48,14 @@ pub(crate) struct ContactStore {
     contacts: Vec<Contact>,
     /// The proxy pair of every live contact.
     pairs: FxHashSet<ProxyPair>,
-    /// The places of `contacts` that hold dropped contacts, in the order they were dropped.
-    dropped_places: Vec<usize>,
-    /// The array the threaded compaction copies the live contacts into, then swaps with
-    /// `contacts`.
-    spare: Spare,
-}
-
-/// The last array compaction left behind, with its stale contacts: its places are overwritten
-/// by the next compaction (no array of placeholders is written first). Not part of the store's
-/// value: a clone starts without one.
-#[derive(Default)]
-struct Spare(Vec<Contact>);
-
-impl Clone for Spare {
-    fn clone(&self) -> Spare {
-        Spare::default()
-    }
-}
-
-impl std::fmt::Debug for Spare {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Spare({} places)", self.0.len())
-    }
-}
-
-/// One task of the threaded compaction: the live contacts of `source`, in order, into `target`.
-struct CompactJob<'a> {
-    source: &'a [Contact],
-    target: &'a mut [Contact],
-    /// The live contacts found in `source`: `target.len()` when the dropped places were right.
-    live_found: usize,
+    /// How many places of `contacts` hold dropped contacts.
+    dropped: usize,
 }
 
 impl ContactStore {
     /// The live contacts.
     pub fn len(&self) -> usize {
-        self.contacts.len() - self.dropped_places.len()
+        self.contacts.len() - self.dropped
     }
 
     /// The places: live contacts and dropped ones not yet compacted away.
@@ -119,7 +88,7 @@ impl ContactStore {
                 self.drop_at(place);
             }
         }
-        self.compact_if_sparse(None);
+        self.compact_if_sparse();
     }
 
     /// Drops the live contact at `place` (an index into [`ContactStore::as_slice`]); its place
@@ -131,69 +100,17 @@ impl ContactStore {
         contact.set_manifold(None);
         contact.manifold_origin = None;
         contact.dropped = true;
-        self.dropped_places.push(place);
+        self.dropped += 1;
     }
 
     /// Removes the dropped contacts' places, keeping the order of the rest, once they are more
-    /// than a [`DROPPED_SHARE`]th of the array. With `threads`, the live contacts are copied into
-    /// the spare array in chunks on them: moving the rain's 12,600 kilobyte contacts on the
-    /// step's thread took some 3 ms once in 20 steps, while the other threads waited.
-    pub fn compact_if_sparse(&mut self, threads: Option<&StepThreads>) {
-        if self.dropped_places.len() * DROPPED_SHARE <= self.contacts.len() {
+    /// than a [`DROPPED_SHARE`]th of the array.
+    pub fn compact_if_sparse(&mut self) {
+        if self.dropped * DROPPED_SHARE <= self.contacts.len() {
             return;
         }
-        let copied = match threads {
-            Some(threads) if self.contacts.len() >= 2 * COMPACT_CHUNK => self.compact_on(threads),
-            _ => false,
-        };
-        if !copied {
-            self.contacts.retain(|contact| !contact.dropped);
-        }
-        self.dropped_places.clear();
-    }
-
-    /// Copies the live contacts into the spare array on `threads` and swaps it in; false (and
-    /// nothing changed) if the dropped places did not match the contacts' marks.
-    fn compact_on(&mut self, threads: &StepThreads) -> bool {
-        let dropped = &mut self.dropped_places;
-        dropped.sort_unstable();
-        let live = self.contacts.len() - dropped.len();
-        // As many places as there are live contacts: the last compaction's array cut short, or
-        // grown by copies of the first contacts (overwritten below) when the contacts grew.
-        let spare = &mut self.spare.0;
-        spare.truncate(live);
-        let grow = live - spare.len();
-        spare.extend_from_slice(&self.contacts[..grow]);
-        // Each chunk of places goes to the next places of the spare array, as many as it has
-        // live contacts (its places less the dropped ones among them).
-        let mut free = &mut spare[..];
-        let mut jobs = Vec::with_capacity(self.contacts.len().div_ceil(COMPACT_CHUNK));
-        let mut dropped_before = 0;
-        for (index, source) in self.contacts.chunks(COMPACT_CHUNK).enumerate() {
-            let dropped_to_end =
-                dropped.partition_point(|&place| place < index * COMPACT_CHUNK + source.len());
-            let live_in_source = source.len() - (dropped_to_end - dropped_before);
-            let (target, rest) = std::mem::take(&mut free).split_at_mut(live_in_source);
-            free = rest;
-            dropped_before = dropped_to_end;
-            jobs.push(CompactJob { source, target, live_found: 0 });
-        }
-        for_each_chunk_of(Some(threads), &mut jobs, 1, |_, jobs| {
-            for job in jobs {
-                let mut targets = job.target.iter_mut();
-                for contact in job.source.iter().filter(|contact| !contact.dropped) {
-                    if let Some(target) = targets.next() {
-                        target.clone_from(contact);
-                    }
-                    job.live_found += 1;
-                }
-            }
-        });
-        let complete = jobs.iter().all(|job| job.live_found == job.target.len());
-        if complete {
-            std::mem::swap(&mut self.contacts, spare);
-        }
-        complete
+        self.contacts.retain(|contact| !contact.dropped);
+        self.dropped = 0;
     }
 
     /// The live contacts, in their order.
@@ -217,14 +134,14 @@ impl ContactStore {
 impl From<Vec<Contact>> for ContactStore {
     fn from(contacts: Vec<Contact>) -> Self {
         let pairs = contacts.iter().map(|c| (c.proxy_a, c.proxy_b)).collect();
-        ContactStore { contacts, pairs, dropped_places: Vec::new(), spare: Spare::default() }
+        ContactStore { contacts, pairs, dropped: 0 }
     }
 }
 
 /// Only the live contacts are written: the pair set follows from them.
 impl serde::Serialize for ContactStore {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        if self.dropped_places.is_empty() {
+        if self.dropped == 0 {
             self.contacts.serialize(serializer)
         } else {
             self.iter().collect::<Vec<_>>().serialize(serializer)
@@ -298,44 +215,5 @@ mod tests {
         assert_eq!(pairs(&back), pairs(&store));
         assert_eq!((back.len(), back.places()), (3, 3));
         assert!(pairs(&store).into_iter().all(|p| back.contains(p)));
-    }
-
-    /// The threaded compaction keeps the live contacts in their order, as the compaction on one
-    /// thread does: over rounds that drop scattered places, grow the store past the last
-    /// compaction's array and shrink it again (the spare array cut short, grown, reused).
-    #[test]
-    fn compaction_on_threads_keeps_what_the_compaction_on_one_thread_keeps() {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
-        let threads = StepThreads::begin(&pool);
-        let (mut threaded, mut plain) = (ContactStore::default(), ContactStore::default());
-        let first = |c: &Contact| c.proxy_a.proxy_id().0;
-        let mut next = 0;
-        for (round, (added, every)) in [(1500, 7), (2000, 3), (100, 2), (3000, 11)].into_iter().enumerate() {
-            for _ in 0..added {
-                threaded.push(contact(2 * next, 2 * next + 1));
-                plain.push(contact(2 * next, 2 * next + 1));
-                next += 1;
-            }
-            let doomed: Vec<usize> = (0..threaded.places())
-                .filter(|&place| !threaded.as_slice()[place].dropped && (place * 31 + round) % every == 0)
-                .collect();
-            for &place in doomed.iter().rev() {
-                threaded.drop_at(place);
-                plain.drop_at(place);
-            }
-            assert!(threaded.dropped_places.len() * DROPPED_SHARE > threaded.places(), "round {round}");
-            // Copied on the threads into the other array (compacting on one thread stays put).
-            let array = threaded.as_slice().as_ptr();
-            threaded.compact_if_sparse(Some(&threads));
-            assert_ne!(threaded.as_slice().as_ptr(), array, "round {round}");
-            plain.compact_if_sparse(None);
-            let order = |s: &ContactStore| s.as_slice().iter().map(first).collect::<Vec<_>>();
-            assert_eq!(order(&threaded), order(&plain), "round {round}");
-            assert_eq!((threaded.len(), threaded.places()), (plain.len(), plain.len()), "round {round}");
-            assert!(threaded
-                .as_slice()
-                .iter()
-                .all(|c| !c.dropped && threaded.contains((c.proxy_a, c.proxy_b))));
-        }
     }
 }
