@@ -18,11 +18,11 @@
 //! the balls land); the walks skip the dropped places, which they read anyway. (Filling each
 //! dropped contact's place with the last contact instead also moves little, but scatters the
 //! order: contacts next to each other no longer touch bodies next to each other, and a new order
-//! changes how the solver's colours fall, hence every result.) The compaction runs on the step's thread, in place, even in a step
-//! with threads: copying the live contacts in chunks on the threads into a second array took
-//! twice as long as moving them in place on one (the 2,000 balls' 13,000 contacts: 1.5–2.1 ms
-//! against 1.0–1.2 ms, measured 2026-12-07) — writing a second array of 11 MB costs more than
-//! the shift within the first.
+//! changes how the solver's colours fall, hence every result.) The compaction runs on the step's
+//! thread, in place, even in a step with threads: copying the live contacts in chunks on the
+//! threads into a second array took twice as long as moving them in place on one (the 2,000
+//! balls' 13,000 contacts: 1.5–2.1 ms against 1.0–1.2 ms, measured 2026-12-07) — writing a
+//! second array of 11 MB costs more than the shift within the first.
 //!
 //! The order of the live contacts is a pure function of the history of the world — the pairs made
 //! in each step, in the broad phase's order — so it is the same on every run and for any thread
