@@ -18,6 +18,7 @@ pub(crate) mod softness;
 pub mod solver;
 pub(crate) mod solver_body;
 pub(crate) mod solver_threads;
+pub(crate) mod stage_shares;
 
 pub use contact_solver::{ContactImpulse, ContactMaterial};
 pub use island::SleepSettings;

@@ -23,6 +23,7 @@ use crate::dynamics::contact_solver::{ContactConstraint, GroupVelocities, StillB
 use crate::dynamics::joint::Joint;
 use crate::dynamics::joint_components::JointComponents;
 use crate::dynamics::solver_body::SolverBody;
+use crate::dynamics::stage_shares::StageShares;
 use crate::id::Slot;
 use crate::step_threads::StepThreads;
 use crate::waiting::Waiting;
@@ -30,9 +31,11 @@ use crate::waiting::Waiting;
 /// The panic of a thread released from a barrier because another thread panicked.
 pub(crate) const RELEASED: &str = "another solver thread panicked";
 
-/// A barrier for a fixed number of threads that spins before it sleeps (waiting.rs).
+/// A barrier for a fixed number of threads that spins before it sleeps (waiting.rs), and the
+/// threads' shares of the colour they work on between two waits (stage_shares.rs).
 pub(crate) struct SpinBarrier {
     threads: usize,
+    shares: StageShares,
     arrived: AtomicUsize,
     generation: AtomicUsize,
     /// Set when a thread panics, so the others stop waiting for it.
@@ -44,6 +47,7 @@ impl SpinBarrier {
     pub fn new(threads: usize) -> Self {
         SpinBarrier {
             threads,
+            shares: StageShares::new(threads),
             arrived: AtomicUsize::new(0),
             generation: AtomicUsize::new(0),
             poisoned: AtomicBool::new(false),
@@ -75,6 +79,11 @@ impl SpinBarrier {
     }
 }
 
+/// The constraints a thread takes at a time of a colour split between the threads
+/// (stage_shares.rs): eight groups of four (contact_lanes.rs), so a piece cuts no group apart;
+/// a few microseconds of work, against some tens of nanoseconds to take it.
+const STAGE_CHUNK: usize = 8 * GROUP;
+
 /// One thread's place among the solver's threads.
 #[derive(Clone, Copy)]
 pub(crate) struct SolverThread<'a> {
@@ -103,6 +112,21 @@ impl<'a> SolverThread<'a> {
     pub fn sync(&self) {
         if let Some(barrier) = self.barrier {
             barrier.wait();
+        }
+    }
+
+    /// Calls `f` on the pieces of `range` (cut at multiples of `chunk`) this thread takes of a
+    /// shared stage: its own share first, then what is left of the others' (stage_shares.rs).
+    /// Every thread must call it for the stage, and the stage end at a barrier.
+    pub fn take_chunks(&self, range: Range<usize>, chunk: usize, f: impl FnMut(Range<usize>)) {
+        match self.barrier {
+            Some(barrier) => barrier.shares.take_chunks(self.index, range, chunk, f),
+            None => {
+                let mut f = f;
+                if !range.is_empty() {
+                    f(range)
+                }
+            }
         }
     }
 
@@ -237,26 +261,22 @@ impl<'a, S: Send> SolveData<'a, S> {
     }
 
     /// `f` on every contact with its two bodies, colour by colour (colouring.rs): a large colour
-    /// split between the threads, small ones and the overflow on the first thread.
+    /// shared between the threads in pieces (`each_stage`), small ones and the overflow on the
+    /// first thread.
     pub fn contacts_with_bodies(
         &self,
         thread: SolverThread,
         f: impl Fn(&mut ContactConstraint, &mut SolverBody, &mut SolverBody),
     ) {
-        for (run, split) in self.colouring.stages() {
-            let mine = match (split, thread.is_first()) {
-                (true, _) => thread.share(run.clone()),
-                (false, true) => run.clone(),
-                (false, false) => 0..0,
-            };
-            // SAFETY: this thread's share of one colour (or a serial run on the first thread
+        let solve = |part: Range<usize>| {
+            // SAFETY: a piece of one colour this thread took (or a serial run on the first thread
             // alone), until the barrier; a colour's contacts share no dynamic body, and
             // `with_pair` copies the others.
-            for c in unsafe { self.contacts.slice(mine) } {
+            for c in unsafe { self.contacts.slice(part) } {
                 unsafe { self.bodies.with_pair(c.body_a, c.body_b, |a, b| f(c, a, b)) };
             }
-            thread.sync();
-        }
+        };
+        self.each_stage(thread, solve);
     }
 
     /// The blocks of rows of the contacts (`StillBlock`), each thread its share, once the
@@ -306,7 +326,7 @@ impl<'a, S: Send> SolveData<'a, S> {
     }
 
     /// As `contacts_with_bodies`, but where there are blocks (`fill_blocks`), the four
-    /// constraints of a block that lies within one colour and this thread's share go to `group`
+    /// constraints of a block that lies within one colour and a piece this thread took go to `group`
     /// (with the block and their bodies, `[a₀, b₀, a₁, b₁, …]`), which returns the bodies' new
     /// velocities, or `None` to have `f` take them one by one. The rest of a colour, and the
     /// overflow, go to `f`. `group` must give each constraint what `f` gives it alone.
@@ -323,18 +343,13 @@ impl<'a, S: Send> SolveData<'a, S> {
         if self.blocks.len == 0 {
             return self.contacts_with_bodies(thread, f);
         }
-        for (run, split) in self.colouring.stages() {
-            let mine = match (split, thread.is_first()) {
-                (true, _) => thread.share(run.clone()),
-                (false, true) => run.clone(),
-                (false, false) => 0..0,
-            };
-            let mut start = mine.start;
-            while start < mine.end {
+        let solve = |piece: Range<usize>| {
+            let mut start = piece.start;
+            while start < piece.end {
                 let colour_end = self.colouring.colour_end(start);
-                let end = colour_end.map_or(mine.end, |end| end.min(mine.end));
-                // SAFETY: as in `contacts_with_bodies`: this thread's share of one colour (or a
-                // serial run on the first thread alone), until the barrier.
+                let end = colour_end.map_or(piece.end, |end| end.min(piece.end));
+                // SAFETY: as in `contacts_with_bodies`: a piece of one colour this thread took
+                // (or a serial run on the first thread alone), until the barrier.
                 let part = unsafe { self.contacts.slice(start..end) };
                 // The whole blocks within the colour, `first_block..end_block`, in groups; the
                 // places before and after them one by one.
@@ -375,6 +390,20 @@ impl<'a, S: Send> SolveData<'a, S> {
                     part.iter_mut().for_each(alone_one);
                 }
                 start = end;
+            }
+        };
+        self.each_stage(thread, solve);
+    }
+
+    /// `solve` on the colours' constraints in colour order, a stage at a time: the pieces this
+    /// thread takes of a colour that is split between the threads (`SolverThread::take_chunks`),
+    /// a serial run on the first thread alone; each stage ends at a barrier.
+    fn each_stage(&self, thread: SolverThread, mut solve: impl FnMut(Range<usize>)) {
+        for (run, split) in self.colouring.stages() {
+            match (split, thread.is_first()) {
+                (true, _) => thread.take_chunks(run.clone(), STAGE_CHUNK, &mut solve),
+                (false, true) => solve(run.clone()),
+                (false, false) => {}
             }
             thread.sync();
         }
