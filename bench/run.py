@@ -126,6 +126,27 @@ def machine():
     return uname, cpu, os.cpu_count()
 
 
+def cpu_ticks():
+    """The machine's CPU time so far as (stolen, total) clock ticks, from /proc/stat (Linux), or
+    None. Stolen time is what the hypervisor gave other guests while this one had work: on a
+    shared virtual machine it slows a run on threads that wait for each other far more than a
+    run on one thread."""
+    try:
+        with open("/proc/stat") as f:
+            fields = [int(x) for x in f.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+    # user nice system idle iowait irq softirq steal [guest guest_nice, already in user and nice]
+    return fields[7], sum(fields[:8])
+
+
+def stolen_share(before, after):
+    """The share of the CPU time between two `cpu_ticks` readings that was stolen, or None."""
+    if before is None or after is None or after[1] <= before[1]:
+        return None
+    return (after[0] - before[0]) / (after[1] - before[1])
+
+
 def run_json(cmd, timeout):
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
     t0 = time.perf_counter()

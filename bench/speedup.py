@@ -25,7 +25,7 @@ import subprocess
 import sys
 import time
 
-from run import MATCHED, TABLE_STEPS, TUMBLE, machine
+from run import MATCHED, TABLE_STEPS, TUMBLE, cpu_ticks, machine, stolen_share
 
 SCENES = ["large_pyramid", "rain", "pyramid", "ragdolls"]
 
@@ -52,6 +52,12 @@ def copies_rate(scene, settings):
     return sum(json.loads(out)["steps_per_second"] for out in outs)
 
 
+def steal_cell(shares):
+    if not shares:
+        return "n/a"
+    return f"{100 * statistics.median(shares):.0f}% ({100 * max(shares):.0f}%)"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--rounds", type=int, default=7)
@@ -63,11 +69,16 @@ def main():
     cases = [(scene, "matched", MATCHED[scene]) for scene in SCENES]
     cases += [(scene, "default", []) for scene in SCENES if scene in ("large_pyramid", "rain")]
     rates = {(scene, name): ([], [], []) for scene, name, _ in cases}
+    stolen = {(scene, name): [] for scene, name, _ in cases}
     for r in range(args.rounds):
         print(f"round {r + 1} of {args.rounds}", file=sys.stderr, flush=True)
         for scene, name, settings in cases:
             one, metrics_one = rate(scene, settings, 1)
+            before = cpu_ticks()
             two, metrics_two = rate(scene, settings, 2)
+            steal = stolen_share(before, cpu_ticks())
+            if steal is not None:
+                stolen[(scene, name)].append(steal)
             if metrics_one != metrics_two:
                 sys.exit(f"{scene} ({name}): one thread gave {metrics_one}, two gave {metrics_two}")
             rates[(scene, name)][0].append(one)
@@ -84,11 +95,14 @@ def main():
         f"{args.rounds} alternating rounds of `tumble bench SCENE --steps N --runs 1 --threads 1` and "
         f"`--threads 2` (`bench/speedup.py`; matched settings as in `bench/run.py`, steps as in the "
         f"peers table), build {commit}. Both thread counts gave the same quality numbers and final state hash in every round. "
-        "The ceiling is two one-thread copies run at once: their summed steps/s over the one-thread rate of the round.",
+        "The ceiling is two one-thread copies run at once: their summed steps/s over the one-thread rate of the round. "
+        "Stolen: the share of the machine's CPU time the hypervisor gave to other guests during the two-thread runs "
+        "(`/proc/stat`); a thread that loses its core holds up the other at every barrier, so rows with much "
+        "stolen time say more about the host than about Tumble.",
         "",
         "| scene | settings | 1 thread (median steps/s) | 2 threads | speed-up (of medians) | per-round range | "
-        "ceiling: two copies (median, range) |",
-        "|---|---|---|---|---|---|---|",
+        "ceiling: two copies (median, range) | stolen during 2-thread runs (median, max) |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for scene, name, _ in cases:
         one, two, copies = rates[(scene, name)]
@@ -96,7 +110,7 @@ def main():
         m1, m2 = statistics.median(one), statistics.median(two)
         lines.append(
             f"| {scene} | {name} | {m1:.1f} | {m2:.1f} | {m2 / m1:.2f} | {min(ratios):.2f}–{max(ratios):.2f} | "
-            f"{statistics.median(copies):.2f} ({min(copies):.2f}–{max(copies):.2f}) |"
+            f"{statistics.median(copies):.2f} ({min(copies):.2f}–{max(copies):.2f}) | {steal_cell(stolen[(scene, name)])} |"
         )
     text = "\n".join(lines) + "\n"
     print(text)
