@@ -26,7 +26,7 @@ use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
-use crate::dynamics::solver_threads::{Shared, SolverThread, SpinBarrier, RELEASED};
+use crate::dynamics::solver_threads::{Shared, SolverThread, ThreadStages, RELEASED};
 use crate::waiting::Waiting;
 
 /// A piece of work for every thread: called once on each, with its place among them.
@@ -43,8 +43,8 @@ struct Control {
     finished: AtomicUsize,
     /// Set when the step ends: the pool's threads go back to the pool.
     closing: AtomicBool,
-    /// The barrier the pieces' stages meet at.
-    barrier: SpinBarrier,
+    /// The stages of the work the threads run (solver_threads.rs).
+    stages: ThreadStages,
     /// Where the threads wait for `posted`, `finished` and `closing` (woken by each change).
     waiting: Waiting,
     /// The first panic of a pool thread, to pass on from `run`.
@@ -74,7 +74,7 @@ impl StepThreads {
             work: UnsafeCell::new(None),
             finished: AtomicUsize::new(0),
             closing: AtomicBool::new(false),
-            barrier: SpinBarrier::new(threads),
+            stages: ThreadStages::new(threads),
             waiting: Waiting::default(),
             panic: Mutex::new(None),
         });
@@ -86,7 +86,7 @@ impl StepThreads {
     }
 
     /// Runs `work` on every thread, the calling thread as thread 0, and returns when all have
-    /// finished it. A panic on any thread releases the others from their barriers and is passed
+    /// finished it. A panic on any thread releases the others from their stages and is passed
     /// on once all have stopped.
     pub fn run(&self, work: impl Fn(SolverThread) + Sync) {
         let control = &*self.control;
@@ -102,9 +102,9 @@ impl StepThreads {
         }
         let number = control.posted.fetch_add(1, Ordering::Release) + 1;
         control.waiting.wake_all();
-        let own = catch_unwind(AssertUnwindSafe(|| work(SolverThread::new(0, &control.barrier))));
+        let own = catch_unwind(AssertUnwindSafe(|| work(SolverThread::new(0, &control.stages))));
         if own.is_err() {
-            control.barrier.poison();
+            control.stages.poison();
         }
         control
             .waiting
@@ -189,10 +189,9 @@ fn serve(control: &Control, index: usize) {
         // SAFETY: see `run`: the piece is alive and not rewritten until this thread has
         // counted itself finished.
         let work = unsafe { &*(*control.work.get()).expect("work is posted before it is counted") };
-        if let Err(panic) =
-            catch_unwind(AssertUnwindSafe(|| work(SolverThread::new(index, &control.barrier))))
+        if let Err(panic) = catch_unwind(AssertUnwindSafe(|| work(SolverThread::new(index, &control.stages))))
         {
-            control.barrier.poison();
+            control.stages.poison();
             if panic.downcast_ref::<&str>() != Some(&RELEASED) {
                 if let Ok(mut first) = control.panic.lock() {
                     first.get_or_insert(panic);
@@ -231,37 +230,42 @@ mod tests {
     }
 
     #[test]
-    fn stages_meet_at_barriers_and_shares_cover_the_range() {
+    fn a_stage_ends_when_every_piece_is_done_and_the_pieces_cover_the_range() {
         let pool = pool(1);
         let threads = StepThreads::begin(&pool);
         let counts: Vec<AtomicUsize> = (0..100).map(|_| AtomicUsize::new(0)).collect();
-        let stage_one_done = AtomicUsize::new(0);
+        let done = AtomicUsize::new(0);
         threads.run(|thread| {
-            for i in thread.share(0..100) {
-                counts[i].fetch_add(1, Ordering::Relaxed);
-            }
-            stage_one_done.fetch_add(1, Ordering::Relaxed);
-            thread.sync();
-            // Every thread sees every other's first stage done.
-            assert_eq!(stage_one_done.load(Ordering::Relaxed), 2);
+            thread.stage(3..100, 8, |piece| {
+                for i in piece {
+                    counts[i].fetch_add(1, Ordering::Relaxed);
+                    done.fetch_add(1, Ordering::Relaxed);
+                }
+            });
+            // Every thread sees every piece of the stage done.
+            assert_eq!(done.load(Ordering::Relaxed), 97);
         });
-        assert!(counts.iter().all(|c| c.load(Ordering::Relaxed) == 1));
+        assert!(counts[..3].iter().all(|c| c.load(Ordering::Relaxed) == 0));
+        assert!(counts[3..].iter().all(|c| c.load(Ordering::Relaxed) == 1));
     }
 
     #[test]
-    fn a_panic_on_a_pool_thread_is_passed_on_and_the_next_step_works() {
+    fn a_panic_in_a_stage_is_passed_on_and_the_next_step_works() {
         let pool = pool(1);
         let result = catch_unwind(AssertUnwindSafe(|| {
             let threads = StepThreads::begin(&pool);
             threads.run(|thread| {
-                if !thread.is_first() {
-                    panic!("pool thread fails");
-                }
-                thread.sync();
+                // Whichever thread takes the second piece fails; the other waits for the stage.
+                thread.stage(0..2, 1, |piece| {
+                    if piece.start == 1 {
+                        panic!("a piece fails");
+                    }
+                });
+                thread.stage(0..2, 1, |_| {});
             });
         }));
         let payload = result.expect_err("the panic is passed on");
-        assert_eq!(payload.downcast_ref::<&str>(), Some(&"pool thread fails"));
+        assert_eq!(payload.downcast_ref::<&str>(), Some(&"a piece fails"));
         let threads = StepThreads::begin(&pool);
         let sum = AtomicUsize::new(0);
         threads.run(|thread| {

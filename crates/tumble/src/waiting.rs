@@ -1,6 +1,6 @@
 //! How the step's threads wait for each other: spin, then yield the core, then sleep.
 //!
-//! Within a step the threads meet hundreds of times (a barrier after every stage, every colour,
+//! Within a step the threads meet hundreds of times (at the end of every stage, every colour,
 //! `dynamics/solver_threads.rs`), and most waits last microseconds: a sleeping thread took about
 //! 75 µs to wake on the two-core virtual machine of the benchmarks, so a waiting thread spins
 //! first, then yields its core between checks. But on a machine busy with other work a thread

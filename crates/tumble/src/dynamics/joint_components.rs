@@ -16,8 +16,8 @@
 use crate::dynamics::island::UnionFind;
 use crate::dynamics::joint::Joint;
 use crate::dynamics::solver_body::SolverBody;
-use crate::dynamics::solver_threads::SolverThread;
 use crate::id::SlotPool;
+use std::ops::Range;
 
 /// Marks a body slot that is not (yet) the root of a component.
 const NONE: u32 = u32::MAX;
@@ -109,14 +109,15 @@ impl JointComponents {
         self.order.is_empty()
     }
 
-    /// The joint slots `thread` solves: the components that start within its share of all the
-    /// joints (so whole components, each on one thread).
-    pub fn share(&self, thread: SolverThread) -> &[u32] {
-        let share = thread.share(0..self.order.len());
-        let components = &self.starts[..self.starts.len() - 1];
-        let first = components.partition_point(|&s| (s as usize) < share.start);
-        let end = components.partition_point(|&s| (s as usize) < share.end);
-        &self.order[self.starts[first] as usize..self.starts[end] as usize]
+    /// The number of components.
+    pub fn count(&self) -> usize {
+        self.starts.len().saturating_sub(1)
+    }
+
+    /// The joint slots of the components `components` (a piece of a joint stage: whole
+    /// components, each on one thread).
+    pub fn slots(&self, components: Range<usize>) -> &[u32] {
+        &self.order[self.starts[components.start] as usize..self.starts[components.end] as usize]
     }
 
     /// The components, each a list of joint slots (for tests).
@@ -130,7 +131,6 @@ impl JointComponents {
 mod tests {
     use super::*;
     use crate::dynamics::joint::{BallJoint, JointDef, JointKind};
-    use crate::dynamics::solver_threads::SpinBarrier;
     use crate::math::DVec3;
     use crate::shape::{Shape, Sphere};
     use crate::{BodyDef, BodyId, BodyKind, World};
@@ -193,24 +193,16 @@ mod tests {
     }
 
     #[test]
-    fn every_thread_count_shares_out_whole_components_once() {
+    fn pieces_of_components_are_their_joints_in_order() {
         let (world, bodies) = world_of_figures();
         let mut components = JointComponents::default();
         components.build(&world.joints, &bodies);
         let whole = components.components();
-        for count in 1..=5 {
-            let barrier = SpinBarrier::new(count);
-            let shares: Vec<&[u32]> =
-                (0..count).map(|index| components.share(SolverThread::new(index, &barrier))).collect();
-            assert_eq!(shares.concat(), [0, 1, 2, 3, 5, 6, 4], "{count} threads");
-            for share in shares {
-                // A share is a run of whole components.
-                let mut rest = share;
-                while let Some(first) = rest.first() {
-                    let component = whole.iter().find(|c| c.contains(first)).unwrap();
-                    assert!(rest.starts_with(component), "{count} threads: {share:?}");
-                    rest = &rest[component.len()..];
-                }
+        assert_eq!(components.count(), whole.len());
+        assert_eq!(components.slots(0..components.count()), [0, 1, 2, 3, 5, 6, 4]);
+        for start in 0..whole.len() {
+            for end in start..=whole.len() {
+                assert_eq!(components.slots(start..end), whole[start..end].concat(), "{start}..{end}");
             }
         }
     }

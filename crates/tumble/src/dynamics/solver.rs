@@ -200,7 +200,7 @@ impl StepContext {
 /// Contacts below which they are prepared on one thread.
 pub(crate) const PARALLEL_MIN_CONTACTS: usize = 128;
 
-/// Bodies from which the body stages alone make threads worth their barriers.
+/// Bodies from which the body stages alone make threads worth their stages' hand-overs.
 pub(crate) const PARALLEL_MIN_BODIES: usize = 1024;
 
 /// Bodies a thread gathers at a time.
@@ -336,7 +336,7 @@ impl World {
         partition.split(&flags, &solved, &self.joints);
 
         // The substeps, on every thread of the pool at once (solver_threads.rs) — where some stage
-        // is split between them: waiting at barriers for stages that are not (a chain of joints)
+        // is split between them: waiting at the ends of stages that are not (a chain of joints)
         // only costs. The result is the same either way.
         let worth_threads = colouring.stages().iter().any(|&(_, split)| split)
             || partition.constrained.len() >= PARALLEL_MIN_BODIES
@@ -422,7 +422,7 @@ impl World {
                 // The steady loads learn from each contact's final impulse of the substep: in the
                 // last relax sweep, right after the contact's row is solved (nothing else touches
                 // that contact before the next substep; a separate sweep over the contacts cost
-                // another pass through their memory and a barrier).
+                // another pass through their memory and a stage end).
                 let learn = ctx.steady_load_time > 0.0;
                 for sweep in 0..ctx.relax_iterations {
                     let last_sweep = sweep + 1 == ctx.relax_iterations;

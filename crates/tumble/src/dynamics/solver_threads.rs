@@ -1,75 +1,55 @@
 //! The solver's threads: every one of the step's threads (step_threads.rs) runs the whole
-//! substep loop, each doing its share of every stage, and they meet at a spinning barrier between
-//! stages (as Box2D v3's solver does).
+//! substep loop, each taking pieces of every stage, and a stage ends when its last piece is done
+//! (stage_shares.rs; Box2D v3's solver closes its stages the same way).
 //!
 //! A step has hundreds of stages (each colour of each pass of each substep, colouring.rs); handing
 //! each to a thread pool would cost a wake-up per stage, more than a small stage's work. Here the
-//! threads stay awake for the step and a stage boundary costs a barrier — a few hundred
-//! nanoseconds.
+//! threads stay awake for the step and a stage boundary costs a few atomic operations. No thread
+//! has to reach a stage's end: one whose core the machine has taken for a while holds up the
+//! others only by a piece it took, and catches up when it runs again.
 //!
-//! Shares never change a number: a body stage treats every body on its own, and a colour's
+//! Pieces never change a number: a body stage treats every body on its own, and a colour's
 //! constraints share no moving body, and neither do two components of joints
 //! (joint_components.rs), so which thread does what is invisible in the result. Stages that are
-//! not split (joint trees, small colours, the overflow colour) run on the first thread while the
-//! others wait.
+//! not split (joint trees, small colours, the overflow colour) are one piece, done by one thread
+//! while the others wait.
 
-#![allow(unsafe_code)] // `Shared`: threads write distinct elements between barriers.
+#![allow(unsafe_code)] // `Shared`: threads write distinct elements within a stage.
 
 use std::ops::Range;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::dynamics::colouring::ContactColouring;
 use crate::dynamics::contact_solver::{ContactConstraint, GroupVelocities, StillBlock, GROUP};
 use crate::dynamics::joint::Joint;
 use crate::dynamics::joint_components::JointComponents;
 use crate::dynamics::solver_body::SolverBody;
-use crate::dynamics::stage_shares::StageShares;
+use crate::dynamics::stage_shares::{Left, StageShares};
 use crate::id::Slot;
 use crate::step_threads::StepThreads;
 use crate::waiting::Waiting;
 
-/// The panic of a thread released from a barrier because another thread panicked.
+/// The panic of a thread released from a stage because another thread panicked.
 pub(crate) const RELEASED: &str = "another solver thread panicked";
 
-/// A barrier for a fixed number of threads that spins before it sleeps (waiting.rs), and the
-/// threads' shares of the colour they work on between two waits (stage_shares.rs).
-pub(crate) struct SpinBarrier {
+/// Where a fixed number of threads meet: the solver's stages, which the threads share out in
+/// pieces and which end when their last piece is done (stage_shares.rs), and how a thread waits
+/// for a stage's end (waiting.rs).
+pub(crate) struct ThreadStages {
     threads: usize,
     shares: StageShares,
-    arrived: AtomicUsize,
-    generation: AtomicUsize,
     /// Set when a thread panics, so the others stop waiting for it.
     poisoned: AtomicBool,
     waiting: Waiting,
 }
 
-impl SpinBarrier {
+impl ThreadStages {
     pub fn new(threads: usize) -> Self {
-        SpinBarrier {
+        ThreadStages {
             threads,
             shares: StageShares::new(threads),
-            arrived: AtomicUsize::new(0),
-            generation: AtomicUsize::new(0),
             poisoned: AtomicBool::new(false),
             waiting: Waiting::default(),
-        }
-    }
-
-    /// Waits until every thread has arrived. Everything a thread wrote before it arrived is
-    /// visible to every thread after the barrier. Panics if another thread panicked.
-    pub fn wait(&self) {
-        let generation = self.generation.load(Ordering::Acquire);
-        if self.arrived.fetch_add(1, Ordering::AcqRel) + 1 == self.threads {
-            self.arrived.store(0, Ordering::Relaxed);
-            self.generation.fetch_add(1, Ordering::Release);
-            self.waiting.wake_all();
-            return;
-        }
-        self.waiting.wait_until(|| {
-            self.generation.load(Ordering::Acquire) != generation || self.poisoned.load(Ordering::Acquire)
-        });
-        if self.generation.load(Ordering::Acquire) == generation {
-            std::panic::panic_any(RELEASED);
         }
     }
 
@@ -77,12 +57,34 @@ impl SpinBarrier {
         self.poisoned.store(true, Ordering::Release);
         self.waiting.wake_all();
     }
+
+    /// Thread `index`'s part of a stage (`StageShares::take_pieces`): returns once the stage is
+    /// done. Everything written in the stage's pieces is then visible to this thread. Panics if
+    /// another thread panicked.
+    fn stage(&self, index: usize, range: Range<usize>, chunk: usize, f: impl FnMut(Range<usize>)) {
+        match self.shares.take_pieces(index, range, chunk, f) {
+            Left::Finished => self.waiting.wake_all(),
+            Left::Done => {}
+            Left::Waiting(stage) => {
+                self.waiting
+                    .wait_until(|| self.shares.is_done(stage) || self.poisoned.load(Ordering::Acquire));
+                if !self.shares.is_done(stage) {
+                    std::panic::panic_any(RELEASED);
+                }
+            }
+        }
+    }
 }
 
 /// The constraints a thread takes at a time of a colour split between the threads
 /// (stage_shares.rs): eight groups of four (contact_lanes.rs), so a piece cuts no group apart;
 /// a few microseconds of work, against some tens of nanoseconds to take it.
-const STAGE_CHUNK: usize = 8 * GROUP;
+const CONTACT_PIECE: usize = 8 * GROUP;
+
+/// Bodies, blocks of four manifolds and joint components a thread takes at a time.
+const BODY_PIECE: usize = 64;
+const BLOCK_PIECE: usize = 8;
+const COMPONENT_PIECE: usize = 2;
 
 /// One thread's place among the solver's threads.
 #[derive(Clone, Copy)]
@@ -92,35 +94,25 @@ pub(crate) struct SolverThread<'a> {
     index: usize,
     count: usize,
     /// `None` when there is one thread.
-    barrier: Option<&'a SpinBarrier>,
+    stages: Option<&'a ThreadStages>,
 }
 
 impl<'a> SolverThread<'a> {
     /// The only thread.
-    pub const ALONE: SolverThread<'static> = SolverThread { index: 0, count: 1, barrier: None };
+    pub const ALONE: SolverThread<'static> = SolverThread { index: 0, count: 1, stages: None };
 
-    pub fn new(index: usize, barrier: &'a SpinBarrier) -> Self {
-        SolverThread { index, count: barrier.threads, barrier: Some(barrier) }
+    pub fn new(index: usize, stages: &'a ThreadStages) -> Self {
+        SolverThread { index, count: stages.threads, stages: Some(stages) }
     }
 
-    /// The thread that runs the stages that are not split.
-    pub fn is_first(&self) -> bool {
-        self.index == 0
-    }
-
-    /// Waits for the other threads at the end of a stage.
-    pub fn sync(&self) {
-        if let Some(barrier) = self.barrier {
-            barrier.wait();
-        }
-    }
-
-    /// Calls `f` on the pieces of `range` (cut at multiples of `chunk`) this thread takes of a
-    /// shared stage: its own share first, then what is left of the others' (stage_shares.rs).
-    /// Every thread must call it for the stage, and the stage end at a barrier.
-    pub fn take_chunks(&self, range: Range<usize>, chunk: usize, f: impl FnMut(Range<usize>)) {
-        match self.barrier {
-            Some(barrier) => barrier.shares.take_chunks(self.index, range, chunk, f),
+    /// A stage over the items `range`: calls `f` on the pieces of it (cut at multiples of
+    /// `chunk`) this thread takes — its own share first, then what is left of the others'
+    /// (stage_shares.rs) — and returns once every piece is done, whoever did it. Every thread
+    /// must go through the same stages in the same order. A stage of `range` in one piece:
+    /// `chunk` of `range.end` or more.
+    pub fn stage(&self, range: Range<usize>, chunk: usize, f: impl FnMut(Range<usize>)) {
+        match self.stages {
+            Some(stages) => stages.stage(self.index, range, chunk, f),
             None => {
                 let mut f = f;
                 if !range.is_empty() {
@@ -138,10 +130,11 @@ impl<'a> SolverThread<'a> {
     }
 }
 
-/// What the substeps work on, shared by the solver's threads. Every stage method ends at a
-/// barrier, and between barriers each thread writes only its share (of the bodies, of the
-/// contacts, or of a colour's contacts, which share no dynamic body) or — the first thread alone —
-/// everything; that is what makes the accesses below sound.
+/// What the substeps work on, shared by the solver's threads. Every stage method is a stage
+/// (`SolverThread::stage`): it returns once every piece of the stage is done, and within it each
+/// thread writes only the pieces it took (of the bodies, of the contacts, of a colour's contacts,
+/// which share no dynamic body, of the joints' components) or — in a stage of one piece, the
+/// thread that took it — everything; that is what makes the accesses below sound.
 pub(crate) struct SolveData<'a, S> {
     bodies: Shared<'a, SolverBody>,
     /// The bodies some constraint acts on (strictly increasing slots): the body stages' work.
@@ -196,81 +189,87 @@ impl<'a, S: Send> SolveData<'a, S> {
         }
     }
 
-    /// `f` on every solved joint with its two bodies, each thread its share of the joints'
-    /// components (joint_components.rs); a body that is not dynamic as a private copy, as for
-    /// the contacts.
+    /// `f` on every solved joint with its two bodies, the joints' components (joint_components.rs)
+    /// shared out whole; a body that is not dynamic as a private copy, as for the contacts.
     pub fn joints_with_bodies(
         &self,
         thread: SolverThread,
         f: impl Fn(&mut Joint, &mut SolverBody, &mut SolverBody),
     ) {
-        for &slot in self.joint_components.share(thread) {
-            // SAFETY: each joint slot appears once in the components, and this thread's share of
-            // them is its own until the barrier.
-            let joint = unsafe { &mut self.joints.slice(slot as usize..slot as usize + 1)[0] };
-            let joint = joint.value_mut().expect("solved joints are live");
-            // SAFETY: the dynamic bodies of a component are its own (no other component's joint
-            // has one), so this thread's until the barrier; `with_pair` copies the others.
-            unsafe {
-                self.bodies.with_pair(joint.body_a.index(), joint.body_b.index(), |a, b| f(joint, a, b))
-            };
-        }
-        thread.sync();
+        let components = 0..self.joint_components.count();
+        thread.stage(components, COMPONENT_PIECE, |piece| {
+            for &slot in self.joint_components.slots(piece) {
+                // SAFETY: each joint slot appears once in the components, and the components this
+                // thread took are its own until the stage ends.
+                let joint = unsafe { &mut self.joints.slice(slot as usize..slot as usize + 1)[0] };
+                let joint = joint.value_mut().expect("solved joints are live");
+                // SAFETY: the dynamic bodies of a component are its own (no other component's
+                // joint has one), so this thread's until the stage ends; `with_pair` copies the
+                // others.
+                unsafe {
+                    self.bodies.with_pair(joint.body_a.index(), joint.body_b.index(), |a, b| f(joint, a, b))
+                };
+            }
+        });
     }
 
-    /// `f` on every constrained body, each thread its share.
+    /// `f` on every constrained body, shared out in pieces.
     pub fn bodies(&self, thread: SolverThread, f: impl Fn(&mut SolverBody)) {
         self.each_body(thread, self.constrained, f);
     }
 
     /// `f` on the unconstrained bodies in groups of up to `N` (in slot order; the last group's
-    /// missing bodies are `None`), each thread its share.
+    /// missing bodies are `None`), shared out in pieces.
     pub fn unconstrained_bodies<const N: usize>(
         &self,
         thread: SolverThread,
         f: impl Fn(&mut [Option<&mut SolverBody>; N]),
     ) {
         let slots = self.unconstrained;
-        for group in slots[thread.share(0..slots.len())].chunks(N) {
-            let mut bodies = std::array::from_fn(|k| {
-                // SAFETY: the slots are distinct (checked in `new`) and in range, and this
-                // thread's share of them is its own until the barrier.
-                group
-                    .get(k)
-                    .map(|&slot| unsafe { &mut self.bodies.slice(slot as usize..slot as usize + 1)[0] })
-            });
-            f(&mut bodies);
-        }
-        thread.sync();
+        // Pieces of whole groups, so the groups are those of one walk over all the slots.
+        thread.stage(0..slots.len(), BODY_PIECE.next_multiple_of(N), |piece| {
+            for group in slots[piece].chunks(N) {
+                let mut bodies = std::array::from_fn(|k| {
+                    // SAFETY: the slots are distinct (checked in `new`) and in range, and the
+                    // pieces this thread took are its own until the stage ends.
+                    group
+                        .get(k)
+                        .map(|&slot| unsafe { &mut self.bodies.slice(slot as usize..slot as usize + 1)[0] })
+                });
+                f(&mut bodies);
+            }
+        });
     }
 
     fn each_body(&self, thread: SolverThread, slots: &[u32], f: impl Fn(&mut SolverBody)) {
-        for &slot in &slots[thread.share(0..slots.len())] {
-            // SAFETY: the slots are distinct (checked in `new`) and in range, and this thread's
-            // share of them is its own until the barrier.
-            f(unsafe { &mut self.bodies.slice(slot as usize..slot as usize + 1)[0] });
-        }
-        thread.sync();
+        thread.stage(0..slots.len(), BODY_PIECE, |piece| {
+            for &slot in &slots[piece] {
+                // SAFETY: the slots are distinct (checked in `new`) and in range, and the pieces
+                // this thread took are its own until the stage ends.
+                f(unsafe { &mut self.bodies.slice(slot as usize..slot as usize + 1)[0] });
+            }
+        });
     }
 
-    /// `f` on every contact on its own (no bodies), each thread its share.
+    /// `f` on every contact on its own (no bodies), shared out in pieces.
     pub fn contacts(&self, thread: SolverThread, f: impl Fn(&mut ContactConstraint)) {
-        // SAFETY: this thread's share, until the barrier.
-        unsafe { self.contacts.slice(thread.share(0..self.contacts.len)) }.iter_mut().for_each(f);
-        thread.sync();
+        thread.stage(0..self.contacts.len, CONTACT_PIECE, |piece| {
+            // SAFETY: a piece this thread took, until the stage ends.
+            unsafe { self.contacts.slice(piece) }.iter_mut().for_each(&f);
+        });
     }
 
     /// `f` on every contact with its two bodies, colour by colour (colouring.rs): a large colour
-    /// shared between the threads in pieces (`each_stage`), small ones and the overflow on the
-    /// first thread.
+    /// shared between the threads in pieces (`each_stage`), small ones and the overflow each on
+    /// one thread.
     pub fn contacts_with_bodies(
         &self,
         thread: SolverThread,
         f: impl Fn(&mut ContactConstraint, &mut SolverBody, &mut SolverBody),
     ) {
         let solve = |part: Range<usize>| {
-            // SAFETY: a piece of one colour this thread took (or a serial run on the first thread
-            // alone), until the barrier; a colour's contacts share no dynamic body, and
+            // SAFETY: a piece of one colour this thread took (or a serial run, on this thread
+            // alone), until the stage ends; a colour's contacts share no dynamic body, and
             // `with_pair` copies the others.
             for c in unsafe { self.contacts.slice(part) } {
                 unsafe { self.bodies.with_pair(c.body_a, c.body_b, |a, b| f(c, a, b)) };
@@ -279,19 +278,19 @@ impl<'a, S: Send> SolveData<'a, S> {
         self.each_stage(thread, solve);
     }
 
-    /// The blocks of rows of the contacts (`StillBlock`), each thread its share, once the
+    /// The blocks of rows of the contacts (`StillBlock`), shared out in pieces, once the
     /// contacts are prepared; nothing if there are no blocks.
     pub fn fill_blocks(&self, thread: SolverThread) {
         self.each_block(thread, |block, contacts| block.fill(contacts));
     }
 
     /// The state the groups hold back into the contacts (`StillBlock::give_back_state`), each
-    /// thread its share, for the stages that read the contacts themselves.
+    /// piece at a time, for the stages that read the contacts themselves.
     pub fn give_back_block_states(&self, thread: SolverThread) {
         self.each_block(thread, |block, contacts| block.give_back_state(contacts));
     }
 
-    /// `ContactConstraint::update_steady_load` of every contact, each thread its share: a group's
+    /// `ContactConstraint::update_steady_load` of every contact, in pieces: a group's
     /// in its block where the block holds their state (`StillBlock::update_steady_loads`, the
     /// same arithmetic in lanes), so the state stays there for the next substep's passes.
     pub fn update_steady_loads(&self, thread: SolverThread, steady_load_time: f64, h: f64) {
@@ -307,22 +306,20 @@ impl<'a, S: Send> SolveData<'a, S> {
         });
     }
 
-    /// `f` on every block with its (up to four) contacts, each thread its share.
+    /// `f` on every block with its (up to four) contacts, shared out in pieces.
     fn each_block(&self, thread: SolverThread, f: impl Fn(&mut StillBlock, &mut [ContactConstraint])) {
-        if self.blocks.len == 0 {
-            return;
-        }
-        let mine = thread.share(0..self.blocks.len);
-        // SAFETY: this thread's share of the blocks and of their contacts, until the barrier.
-        let (blocks, contacts) = unsafe {
-            let first = mine.start * GROUP;
-            let contacts = self.contacts.slice(first..(mine.end * GROUP).min(self.contacts.len));
-            (self.blocks.slice(mine), contacts)
-        };
-        for (block, contacts) in blocks.iter_mut().zip(contacts.chunks_mut(GROUP)) {
-            f(block, contacts);
-        }
-        thread.sync();
+        thread.stage(0..self.blocks.len, BLOCK_PIECE, |piece| {
+            // SAFETY: a piece of the blocks this thread took, and their contacts, until the stage
+            // ends.
+            let (blocks, contacts) = unsafe {
+                let first = piece.start * GROUP;
+                let contacts = self.contacts.slice(first..(piece.end * GROUP).min(self.contacts.len));
+                (self.blocks.slice(piece), contacts)
+            };
+            for (block, contacts) in blocks.iter_mut().zip(contacts.chunks_mut(GROUP)) {
+                f(block, contacts);
+            }
+        });
     }
 
     /// As `contacts_with_bodies`, but where there are blocks (`fill_blocks`), the four
@@ -349,7 +346,7 @@ impl<'a, S: Send> SolveData<'a, S> {
                 let colour_end = self.colouring.colour_end(start);
                 let end = colour_end.map_or(piece.end, |end| end.min(piece.end));
                 // SAFETY: as in `contacts_with_bodies`: a piece of one colour this thread took
-                // (or a serial run on the first thread alone), until the barrier.
+                // (or a serial run, on this thread alone), until the stage ends.
                 let part = unsafe { self.contacts.slice(start..end) };
                 // The whole blocks within the colour, `first_block..end_block`, in groups; the
                 // places before and after them one by one.
@@ -365,11 +362,11 @@ impl<'a, S: Send> SolveData<'a, S> {
                     let (head, rest) = part.split_at_mut(first_block * GROUP - start);
                     let (grouped, tail) = rest.split_at_mut((end_block - first_block) * GROUP);
                     head.iter_mut().for_each(alone_one);
-                    // SAFETY: this thread's blocks (those of its contacts) until the barrier.
+                    // SAFETY: this thread's blocks (those of its contacts) until the stage ends.
                     let blocks = unsafe { self.blocks.slice(first_block..end_block) };
                     for (contacts, block) in grouped.chunks_exact_mut(GROUP).zip(blocks.iter_mut()) {
                         // SAFETY: the constraints are of one colour, so their dynamic bodies are
-                        // distinct and this thread's until the barrier.
+                        // distinct and this thread's until the stage ends.
                         let took = unsafe {
                             let slots = std::array::from_fn(|j| {
                                 let c = &contacts[j / 2];
@@ -395,32 +392,29 @@ impl<'a, S: Send> SolveData<'a, S> {
         self.each_stage(thread, solve);
     }
 
-    /// `solve` on the colours' constraints in colour order, a stage at a time: the pieces this
-    /// thread takes of a colour that is split between the threads (`SolverThread::take_chunks`),
-    /// a serial run on the first thread alone; each stage ends at a barrier.
+    /// `solve` on the colours' constraints in colour order, a stage at a time: a colour that is
+    /// split between the threads in pieces (`SolverThread::stage`), a serial run (small colours,
+    /// the overflow) in one piece, to whichever thread takes it.
     fn each_stage(&self, thread: SolverThread, mut solve: impl FnMut(Range<usize>)) {
         for (run, split) in self.colouring.stages() {
-            match (split, thread.is_first()) {
-                (true, _) => thread.take_chunks(run.clone(), STAGE_CHUNK, &mut solve),
-                (false, true) => solve(run.clone()),
-                (false, false) => {}
-            }
-            thread.sync();
+            let chunk = if *split { CONTACT_PIECE } else { run.end };
+            thread.stage(run.clone(), chunk, &mut solve);
         }
     }
 
-    /// `f` on the first thread with the serial state, the joints' slots and all bodies; the
-    /// others wait.
+    /// `f` on one thread (whichever takes the stage's one piece) with the serial state, the
+    /// joints' slots and all bodies; the others wait.
     pub fn serial(
         &self,
         thread: SolverThread,
         f: impl FnOnce(&mut S, &mut [Slot<Joint>], &mut [SolverBody]),
     ) {
-        if thread.is_first() {
-            // SAFETY: the first thread alone, until the barrier.
+        let mut f = Some(f);
+        thread.stage(0..1, 1, |_| {
+            let f = f.take().expect("a stage's piece is taken once");
+            // SAFETY: the one thread that took the stage's one piece, until the stage ends.
             unsafe { f(&mut self.serial.all()[0], self.joints.all(), self.bodies.all()) };
-        }
-        thread.sync();
+        });
     }
 }
 
@@ -449,7 +443,7 @@ impl<'a> ColouredContacts<'a> {
 }
 
 /// A slice the step's threads share, each writing only elements no other thread touches until
-/// the next barrier (or, in `StepThreads::for_each_chunk`, until the work is done).
+/// the stage ends (or, in `StepThreads::for_each_chunk`, until the work is done).
 pub(crate) struct Shared<'a, T> {
     ptr: *mut T,
     len: usize,
@@ -457,7 +451,7 @@ pub(crate) struct Shared<'a, T> {
 }
 
 // SAFETY: access goes through the unsafe methods, whose contracts keep threads to distinct
-// elements between barriers (and the barrier orders the writes).
+// elements within a stage (and the stage's end orders the writes).
 unsafe impl<T: Send> Send for Shared<'_, T> {}
 unsafe impl<T: Send> Sync for Shared<'_, T> {}
 
@@ -469,7 +463,7 @@ impl<'a, T> Shared<'a, T> {
     /// The elements in `range`.
     ///
     /// # Safety
-    /// No other thread may use them until the next barrier, and this thread holds no other
+    /// No other thread may use them until the stage ends, and this thread holds no other
     /// reference to them.
     #[allow(clippy::mut_from_ref)]
     pub(crate) unsafe fn slice(&self, range: Range<usize>) -> &mut [T] {
@@ -481,7 +475,7 @@ impl<'a, T> Shared<'a, T> {
     /// The whole slice.
     ///
     /// # Safety
-    /// As for `slice`: no other thread uses any element until the next barrier.
+    /// As for `slice`: no other thread uses any element until the stage ends.
     #[allow(clippy::mut_from_ref)]
     unsafe fn all(&self) -> &mut [T] {
         // SAFETY: the caller's contract.
@@ -497,7 +491,7 @@ impl Shared<'_, SolverBody> {
     /// the ground).
     ///
     /// # Safety
-    /// No other thread may use a dynamic body `i` or `j` until the next barrier.
+    /// No other thread may use a dynamic body `i` or `j` until the stage ends.
     unsafe fn with_pair<R>(
         &self,
         i: usize,
@@ -535,7 +529,7 @@ impl Shared<'_, SolverBody> {
     ///
     /// # Safety
     /// The dynamic bodies must be distinct, and no other thread may use them until
-    /// the next barrier.
+    /// the stage ends.
     unsafe fn with_group(
         &self,
         slots: [usize; 2 * GROUP],
