@@ -97,7 +97,7 @@ def main():
         f"peers table), build {commit}. Both thread counts gave the same quality numbers and final state hash in every round. "
         "The ceiling is two one-thread copies run at once: their summed steps/s over the one-thread rate of the round. "
         "Stolen: the share of the machine's CPU time the hypervisor gave to other guests during the two-thread runs "
-        "(`/proc/stat`); a thread that loses its core holds up the other at every barrier, so rows with much "
+        "(`/proc/stat`); a thread that loses its core holds up the other wherever it has taken work, so rows with much "
         "stolen time say more about the host than about Tumble.",
         "",
         "| scene | settings | 1 thread (median steps/s) | 2 threads | speed-up (of medians) | per-round range | "
