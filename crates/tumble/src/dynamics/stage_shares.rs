@@ -25,7 +25,8 @@
 //! body); the pieces it takes from another share are that share's last, next to its own. A share
 //! whose thread has not begun it is left alone for a moment first (`PATIENCE`): a stage of one
 //! piece — the joint trees, a run of small colours — then stays on the first thread, whose cache
-//! holds its data, unless that thread is away.
+//! holds its data, unless that thread is away; a thread found away once is not waited for again
+//! until it begins a stage itself (else each of the step's hundreds of stages would wait).
 //!
 //! Every word below carries the number of the stage it belongs to. The first thread to begin
 //! stage `k` writes its words (the same values whoever writes them: stage `k − 1` is done by
@@ -33,7 +34,7 @@
 //! The threads number the stages alike, as they all go through the same stages in order.
 
 use std::ops::Range;
-use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 /// How long a thread that has finished its own share leaves another share whose thread has not
@@ -54,6 +55,9 @@ struct Share {
     word: AtomicU64,
     /// The number of stages this share's thread has begun (written by it alone).
     stages_begun: AtomicU32,
+    /// Another thread found this share untouched after `PATIENCE` and took it: its thread is
+    /// away (its core taken), and its next shares are taken without waiting, until it is back.
+    away: AtomicBool,
 }
 
 /// The pieces done of the current stage, and the last stage done, on their own cache line.
@@ -156,6 +160,7 @@ impl StageShares {
         if self.is_done(stage) {
             return Left::Done;
         }
+        share.away.store(false, Ordering::Relaxed);
         // Begin the stage's words, unless a thread has begun them (or the stage is done and
         // the words have moved on). The count of pieces done first: a piece is taken only after.
         Self::begin(&self.progress.done, stage, pack(stage, 0));
@@ -184,9 +189,12 @@ impl StageShares {
                 // A share whose thread has not begun it yet is left to it for a moment: the
                 // data of its pieces is likely in that thread's cache (a stage of one piece, the
                 // joint trees, is the same thread's every time).
-                if left.start == untouched && since.get_or_insert_with(Instant::now).elapsed() < PATIENCE {
-                    std::hint::spin_loop();
-                    continue;
+                if left.start == untouched && !share.away.load(Ordering::Relaxed) {
+                    if since.get_or_insert_with(Instant::now).elapsed() < PATIENCE {
+                        std::hint::spin_loop();
+                        continue;
+                    }
+                    share.away.store(true, Ordering::Relaxed);
                 }
                 match Self::take(share, stage, End::Back) {
                     Some(k) => run(k),
@@ -370,13 +378,16 @@ mod tests {
             pieces.sort_by_key(|p| p.start);
             assert_eq!(pieces, self::pieces(stage..1_000, 64));
         }
+        // Thread 1 was waited for once, then taken from at once.
+        assert!(shares.shares[1].away.load(Ordering::Relaxed));
         for stage in 0..5 {
             let left = shares.take_pieces(1, stage..1_000, 64, |_| panic!("a piece of a stage done"));
             assert_eq!(left, Left::Done);
         }
-        // Both go on together.
+        // Both go on together; thread 1 is back.
         let left = shares.take_pieces(1, 0..10, 64, |_| {});
         assert_eq!(left, Left::Finished);
+        assert!(!shares.shares[1].away.load(Ordering::Relaxed));
         assert_eq!(shares.take_pieces(0, 0..10, 64, |_| panic!("taken")), Left::Done);
     }
 
