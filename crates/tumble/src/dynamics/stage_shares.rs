@@ -177,11 +177,11 @@ impl StageShares {
             run(k);
         }
         for other in (1..threads).map(|step| (index + step) % threads) {
-            let share = &self.shares[other];
+            let theirs = &self.shares[other];
             let untouched = own(other).start as u32;
             let mut since = None;
             loop {
-                let word = share.word.load(Ordering::Acquire);
+                let word = theirs.word.load(Ordering::Acquire);
                 let left = pieces_of(word);
                 if stage_of(word) != stage || left.is_empty() {
                     break;
@@ -189,14 +189,14 @@ impl StageShares {
                 // A share whose thread has not begun it yet is left to it for a moment: the
                 // data of its pieces is likely in that thread's cache (a stage of one piece, the
                 // joint trees, is the same thread's every time).
-                if left.start == untouched && !share.away.load(Ordering::Relaxed) {
+                if left.start == untouched && !theirs.away.load(Ordering::Relaxed) {
                     if since.get_or_insert_with(Instant::now).elapsed() < PATIENCE {
                         std::hint::spin_loop();
                         continue;
                     }
-                    share.away.store(true, Ordering::Relaxed);
+                    theirs.away.store(true, Ordering::Relaxed);
                 }
-                match Self::take(share, stage, End::Back) {
+                match Self::take(theirs, stage, End::Back) {
                     Some(k) => run(k),
                     None => break,
                 }
