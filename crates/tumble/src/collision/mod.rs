@@ -29,6 +29,7 @@ pub mod polytope;
 pub mod ray;
 pub mod round;
 pub mod sat;
+pub mod sat_apart;
 pub mod segment;
 pub mod static_pairs;
 pub mod support;

@@ -7,6 +7,7 @@
 
 use std::sync::OnceLock;
 
+use super::support::Core;
 use crate::math::DVec3;
 use crate::shape::{ConvexHull, HullEdge};
 
@@ -119,6 +120,14 @@ impl Polytope<'_> {
             }
         }
         best.0
+    }
+
+    /// The same shape as a support-mapped core (for GJK).
+    pub fn core(&self) -> Core<'_> {
+        match *self {
+            Polytope::Cuboid { half_extents } => Core::Cuboid { half_extents },
+            Polytope::Hull(h) => Core::Hull(h),
+        }
     }
 
     /// A point strictly inside.

@@ -18,6 +18,7 @@
 use super::clip::clip_to_face;
 use super::manifold::{ContactPoint, Manifold};
 use super::polytope::Polytope;
+use super::sat_apart::{self, Apart};
 use super::segment::closest_segment_segment;
 use smallvec::SmallVec;
 use std::cell::Cell;
@@ -66,7 +67,7 @@ const EDGE_REL_TOLERANCE: f64 = 0.1;
 /// face is then the reference, and a cached face is kept.
 const KEEP_REL_TOLERANCE: f64 = 0.05;
 /// Edges closer than this sine of an angle to parallel give no axis (their faces' normals do).
-const PARALLEL_SINE: f64 = 0.005;
+pub(crate) const PARALLEL_SINE: f64 = 0.005;
 
 /// B seen from A's frame: B's vertices, face normals and face offsets mapped once (`map_all`),
 /// with A's own read out of the polytope once, then reused by every query. Before that, each is
@@ -265,6 +266,14 @@ impl<'p, 'h> Frames<'p, 'h> {
     /// `query_within`, listing the edge pairs that pass the first sign test from bit sets of B's
     /// edges (`sets`, at most 128 edges) or testing every pair: the same result either way.
     fn query_with_sets(&self, margin: f64, sets: bool) -> Result<SatQuery, (SatFeature, f64)> {
+        let (face_a, face_b) = self.face_axes(margin)?;
+        Ok(SatQuery { face_a, face_b, edges: self.edge_axes(sets) })
+    }
+
+    /// The best face axis of A and of B (index, separation), or — as soon as one separates the
+    /// shapes by more than `margin` — that axis and its separation.
+    #[allow(clippy::type_complexity)]
+    fn face_axes(&self, margin: f64) -> Result<((usize, f64), (usize, f64)), (SatFeature, f64)> {
         debug_assert_eq!(self.lists.normals_b.len(), self.b.face_count(), "B is mapped (`map_all`)");
         let best = |count: usize, f: &dyn Fn(usize) -> f64| {
             let mut best = (0, f64::NEG_INFINITY);
@@ -287,6 +296,13 @@ impl<'p, 'h> Frames<'p, 'h> {
         if face_b.1 > margin {
             return Err((SatFeature::FaceB(face_b.0 as u32), face_b.1));
         }
+        Ok((face_a, face_b))
+    }
+
+    /// The best edge pair: edge of A, edge of B, separation, axis (A → B); separation −∞ when no
+    /// pair qualifies. `sets`: list the pairs that pass the first sign test from bit sets of B's
+    /// edges (at most 128) rather than testing every pair — the same result either way.
+    fn edge_axes(&self, sets: bool) -> (usize, usize, f64, DVec3) {
         // The Minkowski-face test of an edge pair reads four products of one edge's direction
         // with the normals of the other's two faces (faces[0].normal × faces[1].normal points
         // along the edge; B's normals are negated for the difference A − B, which flips no sign
@@ -380,7 +396,7 @@ impl<'p, 'h> Frames<'p, 'h> {
                 }
             }
         }
-        Ok(SatQuery { face_a, face_b, edges })
+        edges
     }
 }
 
@@ -517,23 +533,39 @@ pub fn collide_polytopes(
         }
     }
     frames.map_all();
-    let q = match frames.query_within(margin) {
-        Ok(q) => q,
+    let (face_a, face_b) = match frames.face_axes(margin) {
+        Ok(faces) => faces,
         Err((feature, separation)) => {
             *cache = SatCache { feature, separation };
             return None;
         }
     };
+    // A face axis shows the shapes apart: GJK's closest features stand in for the edge pairs
+    // (`sat_apart`). Overlapping or touching, every edge pair is tested.
+    let apart = if face_a.1.max(face_b.1) > 0.0 {
+        let lists = &frames.lists;
+        let start = if face_a.1 >= face_b.1 { lists.normals_a[face_a.0] } else { -lists.normals_b[face_b.0] };
+        sat_apart::apart(a, b, &frames.b_in_a, start, margin, &lists.verts_a, &lists.verts_b)
+    } else {
+        None
+    };
+    let edges = match &apart {
+        Some(Apart { edges: Some((ea, eb)), distance, normal, .. }) => (*ea, *eb, *distance, *normal),
+        Some(_) => (0, 0, f64::NEG_INFINITY, DVec3::ZERO),
+        None => frames.edge_axes(b.edges().len() <= 128),
+    };
+    let q = SatQuery { face_a, face_b, edges };
     let best = q.max_separation();
-    if best > margin {
-        cache.feature = if q.face_a.1 == best {
-            SatFeature::FaceA(q.face_a.0 as u32)
-        } else if q.face_b.1 == best {
-            SatFeature::FaceB(q.face_b.0 as u32)
-        } else {
+    let distance = apart.as_ref().map_or(best, |found| found.distance);
+    if distance > margin {
+        cache.feature = if q.edges.2 == best {
             SatFeature::EdgePair(q.edges.0 as u32, q.edges.1 as u32)
+        } else if q.face_a.1 == best {
+            SatFeature::FaceA(q.face_a.0 as u32)
+        } else {
+            SatFeature::FaceB(q.face_b.0 as u32)
         };
-        cache.separation = best;
+        cache.separation = distance;
         return None;
     }
     let slop = 0.0025_f64.min(0.01 * a.bounding_radius().min(b.bounding_radius()));
@@ -552,12 +584,22 @@ pub fn collide_polytopes(
     };
     let mut feature =
         if b_wins { SatFeature::FaceB(q.face_b.0 as u32) } else { SatFeature::FaceA(q.face_a.0 as u32) };
+    // Apart, with neither a face nor an edge pair near the distance (a corner nearest a corner
+    // or an edge): the contact is the closest points themselves. Clipped to a face, the corner's
+    // points would be measured along that face's normal, not the way the shapes approach.
+    if let Some(found) = apart.filter(|found| {
+        found.edges.is_none() && face_sep < found.distance - (KEEP_REL_TOLERANCE * found.distance + slop)
+    }) {
+        *cache = SatCache { feature, separation: face_sep };
+        return Some(closest_point_contact(pose_a, pose_b, &found));
+    }
     if q.edges.2 > face_sep + EDGE_REL_TOLERANCE * face_sep.abs() + slop {
         feature = SatFeature::EdgePair(q.edges.0 as u32, q.edges.1 as u32);
     }
-    // Hysteresis: keep last step's face while it stays within tolerance of the best axis.
+    // Hysteresis: keep last step's face while it stays within tolerance of the best axis (of
+    // the distance, apart).
     if let (Some(s), SatFeature::FaceA(_) | SatFeature::FaceB(_)) = (cached, cache.feature) {
-        if s >= best - (KEEP_REL_TOLERANCE * best.abs() + slop) {
+        if s >= distance - (KEEP_REL_TOLERANCE * distance.abs() + slop) {
             feature = cache.feature;
         }
     }
@@ -566,6 +608,19 @@ pub fn collide_polytopes(
         SatFeature::FaceB(f) => face_contact(b, pose_b, a, pose_a, f as usize, true, margin),
         _ => None,
     };
+    // Apart, the face's clipped points may all lie well above the distance (the nearest corner
+    // cut away past the face's rim): they would let the shapes close by more than the gap in
+    // one step. The closest points are the contact then.
+    if let Some(found) = &apart {
+        if manifold
+            .as_ref()
+            .is_some_and(|m| m.min_separation() > found.distance + KEEP_REL_TOLERANCE * found.distance + slop)
+        {
+            cache.feature = feature;
+            cache.separation = face_sep;
+            return Some(closest_point_contact(pose_a, pose_b, found));
+        }
+    }
     let manifold = match manifold {
         Some(m) => Some(m),
         // No face points survived clipping (a corner just past the rim): use the edge axis.
@@ -573,7 +628,8 @@ pub fn collide_polytopes(
             feature = SatFeature::EdgePair(q.edges.0 as u32, q.edges.1 as u32);
             Some(edge_contact(&frames, pose_a, pose_b, q.edges.0, q.edges.1, q.edges.3))
         }
-        None => None,
+        // Apart, with no edge pair closest: the closest points themselves.
+        None => apart.map(|found| closest_point_contact(pose_a, pose_b, &found)),
     };
     cache.feature = feature;
     cache.separation = match feature {
@@ -627,6 +683,20 @@ fn face_contact(
     Manifold::from_candidates(normal_world, &candidates)
 }
 
+/// Contact of two shapes apart at their closest points (a corner against a corner or an edge,
+/// past the rims of the faces): one point midway, along the line between them.
+fn closest_point_contact(pose_a: &Transform, pose_b: &Transform, found: &Apart) -> Manifold {
+    let normal_world = pose_a.rotation * found.normal;
+    let mid = pose_a.transform_point(0.5 * (found.point_a + found.point_b));
+    let mut m = Manifold::new(normal_world);
+    m.push(ContactPoint::new(pose_a, pose_b, normal_world, mid, found.distance, CLOSEST_POINTS_ID));
+    m
+}
+
+/// The feature id of a closest-points contact: apart from face ids (bit 31 clear) and edge ids
+/// (bit 31 set, below 2^30).
+const CLOSEST_POINTS_ID: u32 = 0xC000_0000;
+
 /// Edge–edge contact: one point midway between the closest points of the two edges.
 fn edge_contact(
     frames: &Frames,
@@ -656,138 +726,5 @@ fn edge_contact(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::math::DQuat;
-
-    /// The reference form of the test, with explicit cross products (the loop in `query` uses
-    /// edge directions in their place).
-    /// Do the Gauss-map arcs `a → b` and `c → d` (unit normals) cross? They do when c and d lie on
-    /// opposite sides of the plane through a and b, a and b on opposite sides of the plane through c
-    /// and d, and both arcs lie in the same hemisphere (the last sign test).
-    fn is_minkowski_face(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
-        let b_x_a = b.cross(a);
-        let d_x_c = d.cross(c);
-        let cba = c.dot(b_x_a);
-        let dba = d.dot(b_x_a);
-        let adc = a.dot(d_x_c);
-        let bdc = b.dot(d_x_c);
-        cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0
-    }
-
-    #[test]
-    fn minkowski_face_arcs() {
-        let s = 3f64.sqrt();
-        // Arc from +X to +Z against an arc crossing y = 0 at (1, 0, 1)/√2: they cross.
-        assert!(is_minkowski_face(
-            DVec3::X,
-            DVec3::Z,
-            DVec3::new(1.0, -1.0, 1.0) / s,
-            DVec3::new(1.0, 1.0, 1.0) / s
-        ));
-        // The antipodal arc does not.
-        assert!(!is_minkowski_face(
-            DVec3::X,
-            DVec3::Z,
-            DVec3::new(-1.0, -1.0, -1.0) / s,
-            DVec3::new(-1.0, 1.0, -1.0) / s
-        ));
-    }
-
-    /// The edge pairs listed from bit sets are the pairs the plain loop tests: the same query,
-    /// bit for bit, for random hulls (up to 54 edges) and boxes in random poses.
-    #[test]
-    fn edge_sets_give_the_plain_loops_query() {
-        let mut rng = crate::scenes::rng::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
-        let mut unit = || rng.range(-1.0, 1.0);
-        let mut hulls = Vec::new();
-        for points in [6, 10, 20] {
-            for _ in 0..3 {
-                let cloud: Vec<DVec3> =
-                    (0..points).map(|_| DVec3::new(unit(), unit(), 0.6 * unit())).collect();
-                hulls.push(crate::shape::ConvexHull::new(&cloud).expect("a hull of random points"));
-            }
-        }
-        let mut shapes: Vec<Polytope> = hulls.iter().map(Polytope::Hull).collect();
-        shapes.push(Polytope::Cuboid { half_extents: DVec3::new(0.5, 0.3, 0.2) });
-        let (mut pairs_tested, mut edge_wins) = (0, 0);
-        for a in &shapes {
-            for b in &shapes {
-                for _ in 0..40 {
-                    let axis = DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::Z);
-                    let pose_b = Transform::new(
-                        DVec3::new(unit(), unit(), unit()) * 1.5,
-                        DQuat::from_axis_angle(axis, 3.2 * unit()),
-                    );
-                    let frames = Frames::new(a, &Transform::IDENTITY, b, &pose_b);
-                    let (Ok(listed), Ok(plain)) = (
-                        frames.query_with_sets(f64::INFINITY, true),
-                        frames.query_with_sets(f64::INFINITY, false),
-                    ) else {
-                        unreachable!("no early out with an infinite margin");
-                    };
-                    let bits = |q: &SatQuery| {
-                        (q.edges.0, q.edges.1, q.edges.2.to_bits(), q.edges.3.to_array().map(f64::to_bits))
-                    };
-                    assert_eq!(bits(&listed), bits(&plain), "pose {pose_b:?}");
-                    pairs_tested += 1;
-                    edge_wins += usize::from(listed.edges.2 > listed.face_a.1.max(listed.face_b.1));
-                }
-            }
-        }
-        assert!(edge_wins > pairs_tested / 20, "edge axes won {edge_wins} of {pairs_tested}");
-    }
-
-    #[test]
-    fn resting_box_uses_the_ground_face() {
-        let ground = Polytope::Cuboid { half_extents: DVec3::new(10.0, 10.0, 1.0) };
-        let cube = Polytope::Cuboid { half_extents: DVec3::splat(0.5) };
-        let pose_g = Transform::IDENTITY;
-        let pose_c = Transform::new(DVec3::new(0.3, -0.2, 1.49), DQuat::from_rotation_z(0.2));
-        let mut cache = SatCache::default();
-        let m = collide_polytopes(&ground, &pose_g, &cube, &pose_c, 0.02, &mut cache).unwrap();
-        assert_eq!(m.len(), 4);
-        assert!((m.normal_world - DVec3::Z).length() < 1e-12);
-        for p in m.points() {
-            assert!((p.separation + 0.01).abs() < 1e-12);
-        }
-        assert!(matches!(cache.feature, SatFeature::FaceA(_)));
-    }
-
-    /// Whatever the cache holds — last step's axis from far away, possibly an edge pair that is no
-    /// longer the closest pair of features — the early outs only ever skip pairs that are apart:
-    /// with the cache carried from a separated pose, the answer at any other pose (touching, or
-    /// not) is the one a fresh cache gives.
-    #[test]
-    fn a_carried_cache_never_hides_a_contact() {
-        let a = Polytope::Cuboid { half_extents: DVec3::new(0.5, 0.3, 0.2) };
-        let b = Polytope::Cuboid { half_extents: DVec3::new(0.4, 0.25, 0.15) };
-        let mut rng = crate::scenes::rng::SplitMix64::new(0x2545_f491_4f6c_dd1d);
-        let mut unit = || rng.range(-1.0, 1.0);
-        let (mut edge_cached, mut touching) = (0, 0);
-        for _ in 0..4000 {
-            let axis = DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::Z);
-            let q = DQuat::from_axis_angle(axis, 3.2 * unit());
-            let dir = DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::X);
-            let far = Transform::new(dir * (0.9 + 0.1 * unit().abs()), q);
-            let turn = DQuat::from_axis_angle(
-                DVec3::new(unit(), unit(), unit()).normalize_or(DVec3::Y),
-                3.2 * unit(),
-            );
-            let near = Transform::new(dir * (0.35 + 0.5 * unit().abs()), turn * q);
-            let mut carried = SatCache::default();
-            let apart = collide_polytopes(&a, &Transform::IDENTITY, &b, &far, 0.02, &mut carried);
-            if apart.is_some() {
-                continue;
-            }
-            edge_cached += usize::from(matches!(carried.feature, SatFeature::EdgePair(..)));
-            let with_carried = collide_polytopes(&a, &Transform::IDENTITY, &b, &near, 0.02, &mut carried);
-            let fresh =
-                collide_polytopes(&a, &Transform::IDENTITY, &b, &near, 0.02, &mut SatCache::default());
-            assert_eq!(with_carried.is_some(), fresh.is_some(), "near pose {near:?}");
-            touching += usize::from(fresh.is_some());
-        }
-        // The sequence exercises both the carried edge axes and contacts found despite them.
-        assert!(edge_cached > 100 && touching > 100, "edge-pair caches {edge_cached}, touching {touching}");
-    }
-}
+#[path = "sat_tests.rs"]
+mod tests;
