@@ -71,11 +71,12 @@ MATCHED = {
     "ragdolls": ["--substeps", "3"],
     # 3 substeps of one solve pass and no relax pass: six passes a step where 4 substeps of a
     # solve and a relax took twelve (the substeps' time halves; the step at 120 steps, where the
-    # narrow phase of the landing hulls is most of it, 1.05-1.2x). The figure, the deepest contact
-    # at the last step, is chaotic: over 18 settings within 1e-7 to 1e-4 of the defaults (damping
-    # ratio, steady_load_time, ...) it spans 2.2-10.7 cm, median 3.2, one of 18 above MuJoCo's
-    # 8.2 cm; at 4 substeps with a relax pass, 2.8-10.8 cm, median 3.7, also one above (measured
-    # 2026-12-07). 2 substeps without a relax pass: 6.5-10.5 cm, median 8.0.
+    # narrow phase of the landing hulls is most of it, 1.05-1.2x). The deepest contact at the last
+    # step alone is chaotic: over 18 settings within 1e-7 to 1e-4 of the defaults (damping
+    # ratio, steady_load_time, ...) it spanned 2.2-10.7 cm, median 3.2 (2026-12-07); so the scene
+    # is judged by that depth averaged over the steps. At 120 steps (2026-12-07, after the GJK
+    # closest features for pairs apart): this setting 9.9 cm, 2 substeps without a relax pass
+    # 11.1, with one 10.6, the defaults 7.6; Rapier 10.8, PyBullet 11.3, MuJoCo 13.9.
     "convex_pile": ["--substeps", "3", "--solver", "relax_iterations=0"],
     "tumbling": ["--substeps", "1"],
 }
@@ -272,7 +273,9 @@ QUALITY_KEYS = {
     "rain": ["escaped", "max penetration"],
     "chain": ["max joint separation"],
     "ragdolls": ["max joint separation"],
-    "convex_pile": ["max penetration"],
+    # The overlap at the end is one sample of a pile still landing (2-10 cm from step to step in
+    # the first 120); averaged over the run's steps it is a measure.
+    "convex_pile": ["mean max penetration"],
     "tumbling": ["energy error"],
 }
 TARGET = 2.0

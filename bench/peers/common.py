@@ -77,10 +77,15 @@ class Quality:
         self.scene, self.engine = scene, engine
         self.anchors = joint_anchors(scene)
         self.joint_max = 0.0
+        # The convex pile's largest overlap, summed over the steps observed.
+        self.penetration_sum, self.steps = 0.0, 0
 
     def observe(self):
         if self.anchors:
             self.joint_max = max(self.joint_max, self.joint_separation())
+        if self.scene["scene"] == "convex_pile":
+            self.penetration_sum += self.engine.max_penetration()
+            self.steps += 1
 
     def joint_separation(self):
         worst = 0.0
@@ -118,7 +123,9 @@ class Quality:
                 "all asleep": self.engine.all_asleep(),
             }
         if name == "convex_pile":
-            return {"max penetration": self.engine.max_penetration()}
+            now = self.engine.max_penetration()
+            mean = self.penetration_sum / self.steps if self.steps else now
+            return {"max penetration": now, "mean max penetration": mean}
         if name == "tumbling":
             return {"energy error": self.engine.energy_error()}
         return {}

@@ -1,6 +1,9 @@
 //! `convex_pile`: random convex hulls (10 points each, about 0.25–0.45 m across each axis)
 //! dropped in layers of 10 × 10 onto a static triangle-mesh terrain (a 40 × 40 m grid of 1 m
-//! cells, gently rolling); 600 steps. Quality: the largest overlap among the touching contacts.
+//! cells, gently rolling); 600 steps. Quality: the largest overlap among the touching contacts at
+//! the end, and that largest overlap averaged over every step of the run (the end alone is one
+//! sample of a pile still landing: in the first 120 steps it ranged 2-10 cm from one step to the
+//! next).
 
 use super::quality::{max_penetration, Metric, Quality};
 use super::rng::SplitMix64;
@@ -99,15 +102,30 @@ pub fn convex_pile(count: usize) -> Scene {
         })
         .expect("a hull is a valid body");
     }
-    Scene::new("convex_pile", count, w, 600, Penetration)
+    Scene::new("convex_pile", count, w, 600, Penetration::default())
 }
 
-struct Penetration;
+/// The largest overlap of each step, summed over the steps observed.
+#[derive(Default)]
+struct Penetration {
+    sum: f64,
+    steps: u32,
+}
 
 impl Probe for Penetration {
-    fn observe(&mut self, _world: &World) {}
+    fn observe(&mut self, world: &World) {
+        self.sum += max_penetration(world);
+        self.steps += 1;
+    }
 
     fn quality(&self, world: &World) -> Quality {
-        Quality { metrics: vec![Metric::Length("max penetration", max_penetration(world))] }
+        let now = max_penetration(world);
+        let mean = if self.steps == 0 { now } else { self.sum / f64::from(self.steps) };
+        Quality {
+            metrics: vec![
+                Metric::Length("max penetration", now),
+                Metric::Length("mean max penetration", mean),
+            ],
+        }
     }
 }
