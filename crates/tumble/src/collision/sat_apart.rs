@@ -138,8 +138,9 @@ mod tests {
     fn crossed_edges_are_found_with_their_distance() {
         let a = Polytope::Cuboid { half_extents: DVec3::splat(0.5) };
         let b = Polytope::Cuboid { half_extents: DVec3::splat(0.5) };
-        // A's edge along y at (x = √2/2·… ): turn A about y by 45°, so its top is an edge along y;
-        // turn B about x by 45°, so its bottom is an edge along x.
+        // A turned about y by 45° has an edge along y on top, at height h = √2/2 (half a unit
+        // cube's face diagonal); B turned about x by 45° has one along x at its bottom, h below
+        // its centre.
         let h = 0.5 * 2f64.sqrt();
         let pose_b = Transform::new(
             DVec3::new(0.0, 0.0, 2.0 * h + 0.03),
