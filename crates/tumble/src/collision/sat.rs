@@ -66,8 +66,10 @@ const EDGE_REL_TOLERANCE: f64 = 0.1;
 /// Face axes within this fraction of |separation| (plus slop) count as equally good: the larger
 /// face is then the reference, and a cached face is kept.
 const KEEP_REL_TOLERANCE: f64 = 0.05;
+/// The edge-pair part of a [`SatQuery`] when no pair qualifies.
+const NO_EDGE_PAIR: (usize, usize, f64, DVec3) = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
 /// Edges closer than this sine of an angle to parallel give no axis (their faces' normals do).
-pub(crate) const PARALLEL_SINE: f64 = 0.005;
+const PARALLEL_SINE: f64 = 0.005;
 
 /// B seen from A's frame: B's vertices, face normals and face offsets mapped once (`map_all`),
 /// with A's own read out of the polytope once, then reused by every query. Before that, each is
@@ -324,7 +326,7 @@ impl<'p, 'h> Frames<'p, 'h> {
         dir_a_on_b.resize(self.lists.normals_b.len(), 0.0);
         let dir_a_on_b = &mut dir_a_on_b[..];
         let centre_a = self.a.interior_point();
-        let mut edges = (0, 0, f64::NEG_INFINITY, DVec3::ZERO);
+        let mut edges = NO_EDGE_PAIR;
         // The first sign test (`cba·dba < 0`: B's edge lies on B's outline seen along A's edge)
         // passes few of B's edges, and as a branch per pair it is mispredicted often. Where B has
         // at most 128 edges, each face of B marks its edges in a bit set; the edges on the outline
@@ -474,14 +476,21 @@ fn lowest_along(points_by_axis: &[Vec<f64>; 3], n: DVec3) -> f64 {
     low[0].min(low[1]).min(low[2].min(low[3]))
 }
 
-/// Separation of two edges along their common normal, oriented out of A (away from A's
-/// interior point `centre_a`); `None` for nearly parallel edges, whose axis a face normal covers.
-fn edge_axis(pa: DVec3, da: DVec3, pb: DVec3, db: DVec3, centre_a: DVec3) -> Option<(f64, DVec3)> {
+/// The cross product of two edge directions and its length; `None` when the edges are within
+/// [`PARALLEL_SINE`] of parallel and so give no axis of their own (their faces' normals do).
+pub(crate) fn edge_cross(da: DVec3, db: DVec3) -> Option<(DVec3, f64)> {
     let axis = da.cross(db);
     let len = axis.length();
     if len < PARALLEL_SINE * (da.length_squared() * db.length_squared()).sqrt() {
         return None;
     }
+    Some((axis, len))
+}
+
+/// Separation of two edges along their common normal, oriented out of A (away from A's
+/// interior point `centre_a`); `None` for nearly parallel edges, whose axis a face normal covers.
+fn edge_axis(pa: DVec3, da: DVec3, pb: DVec3, db: DVec3, centre_a: DVec3) -> Option<(f64, DVec3)> {
+    let (axis, len) = edge_cross(da, db)?;
     let mut n = axis / len;
     if n.dot(pa - centre_a) < 0.0 {
         n = -n;
@@ -551,7 +560,7 @@ pub fn collide_polytopes(
     };
     let edges = match &apart {
         Some(Apart { edges: Some((ea, eb)), distance, normal, .. }) => (*ea, *eb, *distance, *normal),
-        Some(_) => (0, 0, f64::NEG_INFINITY, DVec3::ZERO),
+        Some(_) => NO_EDGE_PAIR,
         None => frames.edge_axes(b.edges().len() <= 128),
     };
     let q = SatQuery { face_a, face_b, edges };

@@ -23,7 +23,7 @@
 
 use super::gjk::{gjk_within, ConvexPair, GjkResult};
 use super::polytope::Polytope;
-use super::sat::PARALLEL_SINE;
+use super::sat::edge_cross;
 use crate::math::{DVec3, Transform};
 
 /// What GJK found for two polyhedra known to be apart.
@@ -87,14 +87,11 @@ fn closest_edges(
     // beside them give it, as in the full test.
     let dir_a = verts_a[pair_a[1] as usize] - verts_a[pair_a[0] as usize];
     let dir_b = verts_b_in_a[pair_b[1] as usize] - verts_b_in_a[pair_b[0] as usize];
-    if dir_a.cross(dir_b).length() < PARALLEL_SINE * (dir_a.length_squared() * dir_b.length_squared()).sqrt()
-    {
-        return None;
-    }
+    edge_cross(dir_a, dir_b)?;
     Some((edge_of(a, pair_a)?, edge_of(b, pair_b)?))
 }
 
-/// The two indices among three, if exactly two differ.
+/// The two indices among two or three, if exactly two differ.
 fn two_distinct(mut indices: impl Iterator<Item = u32>) -> Option<[u32; 2]> {
     let first = indices.next()?;
     let mut second = None;
