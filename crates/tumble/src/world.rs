@@ -73,7 +73,7 @@ pub struct World {
     pub(crate) solver_bodies: Vec<SolverBody>,
     /// Per body slot, what the solver's serial stages ask of the body (kept with `solver_bodies`).
     #[serde(skip)]
-    pub(crate) solver_body_flags: Vec<crate::dynamics::solver::SlotFlags>,
+    pub(crate) solver_slot_summaries: Vec<crate::dynamics::solver::SlotSummary>,
     /// Per body slot, what the solver's write-back found (non-finite state, the plan for the
     /// body's proxies), read by the step's finalize stage.
     #[serde(skip)]
@@ -227,7 +227,7 @@ impl World {
             solver_settings: def.solver,
             sleep_settings: def.sleep,
             solver_bodies: Vec::new(),
-            solver_body_flags: Vec::new(),
+            solver_slot_summaries: Vec::new(),
             written_back: Vec::new(),
             #[cfg(test)]
             plain_proxy_update: false,

@@ -232,21 +232,24 @@ impl World {
         };
         // Assigned in place over last step's vector: collected through an iterator, each solver
         // body was built on the stack and then copied (a third of the gather's time).
-        // Each slot's flags come with it: the contacts' take-part test and the body partition
-        // then read a byte per body instead of two bodies of some hundred bytes, scattered.
+        // Each slot's summary comes with it: the contacts' take-part test, their set-up and the
+        // body partition then read a few bytes per body instead of two bodies of some hundred
+        // bytes, scattered.
         let count = world_bodies.capacity_index();
-        let mut flags = std::mem::take(&mut self.solver_body_flags);
+        let mut summaries = std::mem::take(&mut self.solver_slot_summaries);
         bodies.resize(count, SolverBody::FIXED);
-        flags.resize(count, SlotFlags::default());
-        let gather_chunk = |offset: usize, part: &mut [SolverBody], part_flags: &mut [SlotFlags]| {
-            for (i, (dst, flag)) in part.iter_mut().zip(part_flags).enumerate() {
+        summaries.resize(count, SlotSummary::default());
+        let gather_chunk = |offset: usize, part: &mut [SolverBody], part_summaries: &mut [SlotSummary]| {
+            for (i, (dst, summary)) in part.iter_mut().zip(part_summaries).enumerate() {
                 *dst = gather(offset + i);
-                *flag = SlotFlags::of(dst, world_bodies.iter_slot(offset + i).is_some());
+                *summary = SlotSummary::of(dst, world_bodies.iter_slot(offset + i));
             }
         };
         match threads.filter(|_| count >= PARALLEL_MIN_BODIES) {
-            Some(threads) => threads.for_each_chunk((&mut bodies, &mut flags), GATHER_CHUNK, gather_chunk),
-            None => gather_chunk(0, &mut bodies, &mut flags),
+            Some(threads) => {
+                threads.for_each_chunk((&mut bodies, &mut summaries), GATHER_CHUNK, gather_chunk)
+            }
+            None => gather_chunk(0, &mut bodies, &mut summaries),
         }
 
         // Prepare joints.
@@ -296,13 +299,13 @@ impl World {
         for_each_chunk_of(contact_threads, &mut solved, CONTACT_CHUNK, |offset, places| {
             for (i, place) in places.iter_mut().enumerate() {
                 let contact = &store[offset + i];
-                if takes_part(contact, &flags) {
+                if takes_part(contact, &summaries) {
                     *place = SolvedContact {
                         place: (offset + i) as u32,
                         bodies: (contact.body_a.index() as u32, contact.body_b.index() as u32),
                         moving: (
-                            flags[contact.body_a.index()].dynamic,
-                            flags[contact.body_b.index()].dynamic,
+                            summaries[contact.body_a.index()].dynamic,
+                            summaries[contact.body_b.index()].dynamic,
                         ),
                         bounces: contact.material.restitution != 0.0,
                     };
@@ -324,7 +327,7 @@ impl World {
                 for input in thread.share(0..count) {
                     let contact = &store[solved[input].place as usize];
                     coloured.with_slot(thread, input, |slot| {
-                        prepare_contact(slot, contact, &bodies, world_bodies, &ctx)
+                        prepare_contact(slot, contact, &bodies, &summaries, world_bodies, &ctx)
                     });
                 }
             });
@@ -333,7 +336,7 @@ impl World {
         joint_components.build(&self.joints, &bodies);
         let has_joints = !joint_components.is_empty();
         let mut partition = std::mem::take(&mut self.body_partition);
-        partition.split(&flags, &solved, &self.joints);
+        partition.split(&summaries, &solved, &self.joints);
 
         // The substeps, on every thread of the pool at once (solver_threads.rs) — where some stage
         // is split between them: waiting at the ends of stages that are not (a chain of joints)
@@ -524,7 +527,7 @@ impl World {
             .extend(written.iter().enumerate().filter(|(_, w)| w.non_finite).map(|(slot, _)| slot));
         self.written_back = written;
         self.solver_bodies = bodies;
-        self.solver_body_flags = flags;
+        self.solver_slot_summaries = summaries;
     }
 }
 
@@ -541,7 +544,7 @@ pub(crate) struct BodyPartition {
 impl BodyPartition {
     /// Splits the moving (dynamic or kinematic) bodies by whether a contact row or a solved joint
     /// acts on them; each list in slot order.
-    fn split(&mut self, bodies: &[SlotFlags], contacts: &[SolvedContact], joints: &SlotPool<Joint>) {
+    fn split(&mut self, bodies: &[SlotSummary], contacts: &[SolvedContact], joints: &SlotPool<Joint>) {
         self.acted_on.clear();
         self.acted_on.resize(bodies.len(), false);
         for contact in contacts {
@@ -580,9 +583,11 @@ impl SolvedContact {
         SolvedContact { place: u32::MAX, bodies: (0, 0), moving: (false, false), bounces: false };
 }
 
-/// What the solver's serial stages ask of a body slot, from its solver body.
+/// What the solver's serial stages and the contacts' set-up ask of a body slot, beside its solver
+/// body: a few bytes per body in slot order, where reading the world's bodies for them missed the
+/// cache on two bodies of some hundred bytes per contact.
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct SlotFlags {
+pub(crate) struct SlotSummary {
     /// The slot holds a body.
     exists: bool,
     /// It takes impulses (`inv_mass != 0`).
@@ -591,6 +596,25 @@ pub(crate) struct SlotFlags {
     dynamic: bool,
     /// It moves in the position stage (`SolverBody::moves`).
     moves: bool,
+    /// The radius of its shape's round side (`RoundSide`).
+    round: RoundSide,
+    /// Its centre of mass at the step start, world frame.
+    com_world: DVec3,
+}
+
+/// The radius of the round side a body's contacts lie on (a sphere's, a capsule's; 0 on corners,
+/// edges and faces: `PointConstraint::anchors` in contact_solver.rs), by body where its shape is
+/// one leaf; a compound's depends on the contact's child.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum RoundSide {
+    Radius(f64),
+    ByChild,
+}
+
+impl Default for RoundSide {
+    fn default() -> Self {
+        RoundSide::Radius(0.0)
+    }
 }
 
 /// What the write-back found for a body slot.
@@ -602,15 +626,49 @@ pub(crate) struct WrittenBack {
     pub proxies: ProxyPlan,
 }
 
-impl SlotFlags {
-    fn of(body: &SolverBody, exists: bool) -> SlotFlags {
-        SlotFlags { exists, movable: body.inv_mass != 0.0, dynamic: body.is_dynamic(), moves: body.moves() }
+impl SlotSummary {
+    /// The summary of a slot that holds `body` (if any), whose solver body is `solver_body`.
+    fn of(solver_body: &SolverBody, body: Option<&Body>) -> SlotSummary {
+        let round = match body.and_then(Body::shape) {
+            Some(Shape::Compound(_)) => RoundSide::ByChild,
+            Some(shape) => RoundSide::Radius(round_radius(shape)),
+            None => RoundSide::Radius(0.0),
+        };
+        SlotSummary {
+            exists: body.is_some(),
+            movable: solver_body.inv_mass != 0.0,
+            dynamic: solver_body.is_dynamic(),
+            moves: solver_body.moves(),
+            round,
+            com_world: body.map_or(DVec3::ZERO, Body::com_world),
+        }
+    }
+
+    /// The radius of the round side of the body's leaf `child`.
+    #[inline]
+    fn round_radius(&self, body: usize, child: u32, world_bodies: &SlotPool<Body>) -> f64 {
+        match self.round {
+            RoundSide::Radius(radius) => radius,
+            RoundSide::ByChild => world_bodies
+                .iter_slot(body)
+                .and_then(Body::shape)
+                .map_or(0.0, |shape| round_radius(leaf(shape, child).0)),
+        }
+    }
+}
+
+/// A leaf shape's round radius: a sphere's or capsule's, 0 for the others.
+fn round_radius(leaf: &Shape) -> f64 {
+    match leaf {
+        Shape::Sphere(s) => s.radius,
+        Shape::Capsule(c) => c.radius,
+        _ => 0.0,
     }
 }
 
 /// Whether the solver takes a contact: touching, not a sensor, with a body that can move.
-fn takes_part(contact: &Contact, flags: &[SlotFlags]) -> bool {
-    let (a, b) = (flags[contact.body_a.index()], flags[contact.body_b.index()]);
+fn takes_part(contact: &Contact, summaries: &[SlotSummary]) -> bool {
+    let (a, b) = (&summaries[contact.body_a.index()], &summaries[contact.body_b.index()]);
     contact.manifold.is_some()
         && contact.touching
         && !contact.sensor
@@ -624,22 +682,18 @@ fn prepare_contact(
     constraint: &mut ContactConstraint,
     contact: &Contact,
     bodies: &[SolverBody],
+    summaries: &[SlotSummary],
     world_bodies: &SlotPool<Body>,
     ctx: &StepContext,
 ) {
     let (ia, ib) = (contact.body_a.index(), contact.body_b.index());
-    let (Some(manifold), Some(a), Some(b)) =
-        (contact.manifold.as_ref(), world_bodies.iter_slot(ia), world_bodies.iter_slot(ib))
-    else {
-        unreachable!("takes_part checked the manifold and the bodies")
-    };
+    let Some(manifold) = contact.manifold.as_ref() else { unreachable!("takes_part checked the manifold") };
+    let (a, b) = (&summaries[ia], &summaries[ib]);
     // Round sides (spheres, capsules) keep their contact at the bottom as they roll.
-    let radius = |body: &Body, child: u32| match body.shape().map(|shape| leaf(shape, child).0) {
-        Some(Shape::Sphere(s)) => s.radius,
-        Some(Shape::Capsule(c)) => c.radius,
-        _ => 0.0,
-    };
-    let radii = (radius(a, contact.child_a), radius(b, contact.child_b));
+    let radii = (
+        a.round_radius(ia, contact.child_a, world_bodies),
+        b.round_radius(ib, contact.child_b, world_bodies),
+    );
     let mut points = [ContactPointInput::default(); 4];
     for ((input, point), impulse) in points.iter_mut().zip(manifold.points()).zip(&contact.impulses) {
         *input = ContactPointInput {
@@ -651,7 +705,7 @@ fn prepare_contact(
     constraint.prepare_in_place(
         (ia, ib),
         (&bodies[ia], &bodies[ib]),
-        (a.com_world(), b.com_world()),
+        (a.com_world, b.com_world),
         radii,
         manifold.normal_world,
         &points[..manifold.len()],
