@@ -102,7 +102,9 @@ impl ConvexHull {
         self.bounding_radius
     }
 
-    /// Index of the vertex farthest along `dir_local` (the lowest index on ties).
+    /// Index of the vertex farthest along `dir_local` (the lowest index on ties; 0 when no
+    /// product is a number). (Four lanes of running maxima with selections in place of the
+    /// branch gave the same answers but ran the convex pile's narrow phase about 5% slower.)
     pub fn support_index(&self, dir_local: DVec3) -> usize {
         let mut best = 0;
         let mut best_dot = f64::NEG_INFINITY;
