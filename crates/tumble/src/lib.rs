@@ -16,6 +16,7 @@ mod lanes;
 pub mod mass;
 pub mod math;
 pub mod non_finite;
+mod prefetch;
 pub mod profile;
 pub mod query;
 pub mod scenes;

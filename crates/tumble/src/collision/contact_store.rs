@@ -41,6 +41,20 @@ pub(crate) type ProxyPair = (ProxyKey, ProxyKey);
 /// away, as the divisor of the array's length: a sixteenth.
 const DROPPED_SHARE: usize = 16;
 
+/// How many places ahead a walk over the contacts asks for the next ones' memory (`prefetch.rs`):
+/// about one miss's time of work on a rain's contacts.
+pub(crate) const PREFETCH_AHEAD: usize = 4;
+
+/// The prefetch of a walk over `contacts` in order, at `place`: the whole contact
+/// [`PREFETCH_AHEAD`] places ahead. (Asking also for the bodies and boxes of the contact half as
+/// far ahead, in cache by then, gained nothing measurable.)
+#[inline(always)]
+pub(crate) fn prefetch_ahead(contacts: &[Contact], place: usize) {
+    if let Some(far) = contacts.get(place + PREFETCH_AHEAD) {
+        far.prefetch();
+    }
+}
+
 #[derive(Clone, Debug, Default, serde::Deserialize)]
 #[serde(from = "Vec<Contact>")]
 pub(crate) struct ContactStore {
@@ -81,9 +95,11 @@ impl ContactStore {
         self.pairs.reserve(additional);
     }
 
-    /// Keeps the live contacts for which `keep` is true, in their order, and drops the rest.
+    /// Keeps the live contacts for which `keep` is true, in their order, and drops the rest
+    /// (each contact asked for [`PREFETCH_AHEAD`] places ahead).
     pub fn retain(&mut self, mut keep: impl FnMut(&mut Contact) -> bool) {
         for place in 0..self.contacts.len() {
+            prefetch_ahead(&self.contacts, place);
             if !self.contacts[place].dropped && !keep(&mut self.contacts[place]) {
                 self.drop_at(place);
             }

@@ -70,6 +70,12 @@ impl Contact {
         }
     }
 
+    /// Asks for the whole contact ahead of a walk's reading it (`prefetch.rs`).
+    #[inline(always)]
+    pub fn prefetch(&self) {
+        crate::prefetch::prefetch(self);
+    }
+
     /// A contact between two proxies of bodies 0 and 1, for tests of the store.
     #[cfg(test)]
     pub fn new_for_test(proxy_a: ProxyKey, proxy_b: ProxyKey) -> Contact {

@@ -19,6 +19,7 @@
 
 use crate::body::{Body, BodyKind};
 use crate::collision::contact_manager::{leaf, plan_proxies, ProxyPlan};
+use crate::collision::contact_store::{prefetch_ahead, PREFETCH_AHEAD};
 use crate::dynamics::contact::Contact;
 use crate::dynamics::contact_solver::{
     solve_group, warm_start_group, ContactConstraint, ContactPointInput, StillBlock, GROUP, GROUPS_PAY,
@@ -298,6 +299,7 @@ impl World {
         let contact_threads = threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK);
         for_each_chunk_of(contact_threads, &mut solved, CONTACT_CHUNK, |offset, places| {
             for (i, place) in places.iter_mut().enumerate() {
+                prefetch_ahead(store, offset + i);
                 let contact = &store[offset + i];
                 if takes_part(contact, &summaries) {
                     *place = SolvedContact {
@@ -325,6 +327,10 @@ impl World {
             // Threads only where there are enough contacts to share (the result is the same).
             run_on_threads(threads.filter(|_| count >= PARALLEL_MIN_CONTACTS), |thread| {
                 for input in thread.share(0..count) {
+                    if let Some(ahead) = solved.get(input + PREFETCH_AHEAD) {
+                        store[ahead.place as usize].prefetch();
+                        coloured.prefetch_slot(input + PREFETCH_AHEAD);
+                    }
                     let contact = &store[solved[input].place as usize];
                     coloured.with_slot(thread, input, |slot| {
                         prepare_contact(slot, contact, &bodies, &summaries, world_bodies, &ctx)

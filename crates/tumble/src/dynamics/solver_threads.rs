@@ -431,6 +431,16 @@ impl<'a> ColouredContacts<'a> {
         ColouredContacts { contacts: Shared::new(contacts), colouring }
     }
 
+    /// Asks for the place of the constraint of input `input` ahead of its writing (`prefetch.rs`);
+    /// nothing is read.
+    #[inline(always)]
+    pub fn prefetch_slot(&self, input: usize) {
+        if input < self.contacts.len {
+            let slot = self.colouring.slot(input);
+            crate::prefetch::prefetch_at(self.contacts.ptr.wrapping_add(slot).cast_const());
+        }
+    }
+
     /// Calls `f` on the place (in colour order) of the constraint of input `input`, which must be
     /// in `thread`'s share of the inputs.
     pub fn with_slot(&self, thread: SolverThread, input: usize, f: impl FnOnce(&mut ContactConstraint)) {
