@@ -129,7 +129,7 @@ mod tests {
     #[test]
     fn the_bounding_ball_early_out_drops_no_contact() {
         let mut rng = SplitMix64::new(11);
-        let mut unit = |rng: &mut SplitMix64| {
+        let unit = |rng: &mut SplitMix64| {
             DVec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)).normalize()
         };
         let mut shapes = Vec::new();
