@@ -8,7 +8,7 @@
 
 use super::aabb::{shape_aabb, Aabb};
 use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};
-use super::contact_store::{prefetch_ahead, ContactStore};
+use super::contact_store::{prefetch_ahead, prefetch_start, ContactStore};
 use super::manifold_reuse::{is_flat_sided, ManifoldOrigin};
 use super::narrow_phase::collide;
 use super::support::Rounded;
@@ -314,6 +314,7 @@ impl ContactManager {
                 outcome.links.clear();
                 outcome.changes.clear();
                 let first = (offset + index) * NARROW_PHASE_CHUNK;
+                prefetch_start(chunk);
                 for place in first..first + chunk.len() {
                     prefetch_ahead(chunk, place - first);
                     let contact = &mut chunk[place - first];

@@ -19,7 +19,7 @@
 
 use crate::body::{Body, BodyKind};
 use crate::collision::contact_manager::{leaf, plan_proxies, ProxyPlan};
-use crate::collision::contact_store::{prefetch_ahead, PREFETCH_AHEAD};
+use crate::collision::contact_store::{prefetch_ahead, prefetch_start, PREFETCH_AHEAD};
 use crate::dynamics::contact::Contact;
 use crate::dynamics::contact_solver::{
     solve_group, warm_start_group, ContactConstraint, ContactPointInput, StillBlock, GROUP, GROUPS_PAY,
@@ -298,6 +298,7 @@ impl World {
         solved.resize(store.len(), SolvedContact::LEFT_OUT);
         let contact_threads = threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK);
         for_each_chunk_of(contact_threads, &mut solved, CONTACT_CHUNK, |offset, places| {
+            prefetch_start(&store[offset..]);
             for (i, place) in places.iter_mut().enumerate() {
                 prefetch_ahead(store, offset + i);
                 let contact = &store[offset + i];
