@@ -10,21 +10,20 @@
 //! without collecting references first.
 //!
 //! Dropping a contact leaves it in its place, marked `dropped` and emptied (no manifold, not
-//! touching), and the places are compacted away — the survivors keep their order — only once
-//! they are more than [`DROPPED_SHARE`] of the array: by the walk of the next one-thread narrow
-//! phase as it goes (`retain`), or after the walk of a threaded one (`compact_if_sparse`).
-//! Compacting at every drop moved most of the array for a few contacts: the pile of falling
-//! balls drops about 35 of its 12,500 contacts a step, and the compaction moved some 8,900
-//! kilobyte contacts, 340 µs of a step on the step's own thread while the others waited. Now it
-//! moves them once in 7 to 20 steps (7 while most of the balls land); the walks skip the dropped
-//! places, which they read anyway. (Filling each
-//! dropped contact's place with the last contact instead also moves little, but scatters the
-//! order: contacts next to each other no longer touch bodies next to each other, and a new order
-//! changes how the solver's colours fall, hence every result.) The compaction runs on the step's
-//! thread, in place, even in a step with threads: copying the live contacts in chunks on the
-//! threads into a second array took twice as long as moving them in place on one (the 2,000
-//! balls' 13,000 contacts: 1.5–2.1 ms against 1.0–1.2 ms, measured 2026-12-07) — writing a
-//! second array of 11 MB costs more than the shift within the first.
+//! touching), and the places are compacted away — the survivors keep their order — only once they
+//! are more than [`DROPPED_SHARE`] of the array: by the walk of the next one-thread narrow phase as
+//! it goes (`retain`), or after the walk of a threaded one (`compact_if_sparse`). Compacting at
+//! every drop moved most of the array for a few contacts: the pile of falling balls drops about 35
+//! of its 12,500 contacts a step, and the compaction moved some 8,900 kilobyte contacts, 340 µs of
+//! a step on the step's own thread while the others waited. Now it moves them once in 7 to 20 steps
+//! (7 while most of the balls land); the walks skip the dropped places, which they read anyway.
+//! (Filling each dropped contact's place with the last contact instead also moves little, but
+//! scatters the order: contacts next to each other no longer touch bodies next to each other, and a
+//! new order changes how the solver's colours fall, hence every result.) The compaction runs on the
+//! step's thread, in place, even in a step with threads: copying the live contacts in chunks on the
+//! threads into a second array took twice as long as moving them in place on one (the 2,000 balls'
+//! 13,000 contacts: 1.5–2.1 ms against 1.0–1.2 ms, measured 2026-12-07) — writing a second array of
+//! 11 MB costs more than the shift within the first.
 //!
 //! The order of the live contacts is a pure function of the history of the world — the pairs made
 //! in each step, in the broad phase's order — so it is the same on every run and for any thread
