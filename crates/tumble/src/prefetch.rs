@@ -1,6 +1,6 @@
 //! A hint to the processor to start loading a value's memory into the cache before it is read.
 //!
-//! The narrow phase and the solver's set-up walk the store of contacts, 872 bytes each, in order,
+//! The narrow phase and the solver's set-up walk the store of contacts, 896 bytes each, in order,
 //! and the set-up writes each one's constraint (1,320 bytes) into its colour's place. The core
 //! stalled on the first read of each contact: that stride is not one the hardware prefetchers
 //! follow. Asking for the contact (and its constraint's place) a few places ahead lets those
@@ -25,6 +25,15 @@ pub(crate) fn prefetch_at<T>(address: *const T) {
     let start = address.cast::<u8>();
     for offset in (0..std::mem::size_of::<T>()).step_by(LINE) {
         prefetch_line(start.wrapping_add(offset));
+    }
+}
+
+/// Starts loading the first `lines` cache lines of `value`.
+#[inline(always)]
+pub(crate) fn prefetch_lines<T>(value: &T, lines: usize) {
+    let start = (value as *const T).cast::<u8>();
+    for line in 0..lines.min(std::mem::size_of::<T>().div_ceil(LINE)) {
+        prefetch_line(start.wrapping_add(line * LINE));
     }
 }
 

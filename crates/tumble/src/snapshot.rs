@@ -21,8 +21,8 @@ const MAGIC: &[u8; 8] = b"TUMBLESN";
 /// body's fields are in a new order. 5: contact points carry how long they have been learning
 /// their steady load. 6: contacts are a list in the order they were made (was a map keyed by
 /// their proxy pair). 7: the broad phase's trees keep no scratch stack. 8: triangle meshes keep
-/// each triangle's edge bends.
-pub const SNAPSHOT_VERSION: u32 = 8;
+/// each triangle's edge bends. 9: a contact's fields are in a new order (head first).
+pub const SNAPSHOT_VERSION: u32 = 9;
 const HEADER_LEN: usize = 8 + 4 + 8 + 8;
 
 /// Why a snapshot could not be read.

@@ -8,7 +8,7 @@
 
 use super::aabb::{shape_aabb, Aabb};
 use super::broad_phase::{BroadPhase, ProxyKey, ProxyKind, ProxyUpdate};
-use super::contact_store::{prefetch_ahead, prefetch_start, ContactStore};
+use super::contact_store::{prefetch_ahead, prefetch_start, ContactStore, Reach};
 use super::manifold_reuse::{is_flat_sided, ManifoldOrigin};
 use super::narrow_phase::collide;
 use super::support::Rounded;
@@ -321,9 +321,9 @@ impl ContactManager {
                 outcome.links.clear();
                 outcome.changes.clear();
                 let first = (offset + index) * chunk_size;
-                prefetch_start(chunk);
+                prefetch_start(chunk, Reach::Whole);
                 for place in first..first + chunk.len() {
-                    prefetch_ahead(chunk, place - first);
+                    prefetch_ahead(chunk, place - first, Reach::Whole);
                     let contact = &mut chunk[place - first];
                     if contact.dropped {
                         continue; // its proxies may be gone

@@ -46,13 +46,31 @@ const DROPPED_SHARE: usize = 16;
 /// about one miss's time of work on a rain's contacts.
 pub(crate) const PREFETCH_AHEAD: usize = 4;
 
-/// The prefetch of a walk over `contacts` in order, at `place`: the whole contact
-/// [`PREFETCH_AHEAD`] places ahead. (Asking also for the bodies and boxes of the contact half as
-/// far ahead, in cache by then, gained nothing measurable.)
+/// How much of a contact a walk asks for ahead of reading it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Reach {
+    /// The whole contact (the narrow phase, which updates its manifold and cache).
+    Whole,
+    /// Its head (`Contact::prefetch_head`): a walk that reads the rest only of the few contacts
+    /// it takes.
+    Head,
+}
+
 #[inline(always)]
-pub(crate) fn prefetch_ahead(contacts: &[Contact], place: usize) {
+fn prefetch_reach(contact: &Contact, reach: Reach) {
+    match reach {
+        Reach::Whole => contact.prefetch(),
+        Reach::Head => contact.prefetch_head(),
+    }
+}
+
+/// The prefetch of a walk over `contacts` in order, at `place`: the contact [`PREFETCH_AHEAD`]
+/// places ahead. (Asking also for the bodies and boxes of the contact half as far ahead, in
+/// cache by then, gained nothing measurable.)
+#[inline(always)]
+pub(crate) fn prefetch_ahead(contacts: &[Contact], place: usize, reach: Reach) {
     if let Some(far) = contacts.get(place + PREFETCH_AHEAD) {
-        far.prefetch();
+        prefetch_reach(far, reach);
     }
 }
 
@@ -61,9 +79,9 @@ pub(crate) fn prefetch_ahead(contacts: &[Contact], place: usize) {
 /// this, the first few contacts of every chunk (an eighth of a chunk of 32) each waited for
 /// memory.
 #[inline(always)]
-pub(crate) fn prefetch_start(contacts: &[Contact]) {
+pub(crate) fn prefetch_start(contacts: &[Contact], reach: Reach) {
     for contact in contacts.iter().take(PREFETCH_AHEAD) {
-        contact.prefetch();
+        prefetch_reach(contact, reach);
     }
 }
 
@@ -117,7 +135,7 @@ impl ContactStore {
     pub fn retain(&mut self, mut keep: impl FnMut(&mut Contact) -> bool) {
         if !self.compaction_due() {
             for place in 0..self.contacts.len() {
-                prefetch_ahead(&self.contacts, place);
+                prefetch_ahead(&self.contacts, place, Reach::Whole);
                 if !self.contacts[place].dropped && !keep(&mut self.contacts[place]) {
                     self.drop_at(place);
                 }

@@ -19,7 +19,7 @@
 
 use crate::body::{Body, BodyKind};
 use crate::collision::contact_manager::{leaf, plan_proxies, ProxyPlan};
-use crate::collision::contact_store::{prefetch_ahead, prefetch_start, PREFETCH_AHEAD};
+use crate::collision::contact_store::{prefetch_ahead, prefetch_start, Reach, PREFETCH_AHEAD};
 use crate::dynamics::contact::Contact;
 use crate::dynamics::contact_solver::{
     solve_group, warm_start_group, ContactConstraint, ContactPointInput, StillBlock, GROUP, GROUPS_PAY,
@@ -298,9 +298,9 @@ impl World {
         solved.resize(store.len(), SolvedContact::LEFT_OUT);
         let contact_threads = threads.filter(|_| store.len() >= PARALLEL_MIN_CONTACT_CHUNKS * CONTACT_CHUNK);
         for_each_chunk_of(contact_threads, &mut solved, CONTACT_CHUNK, |offset, places| {
-            prefetch_start(&store[offset..]);
+            prefetch_start(&store[offset..], Reach::Head);
             for (i, place) in places.iter_mut().enumerate() {
-                prefetch_ahead(store, offset + i);
+                prefetch_ahead(store, offset + i, Reach::Head);
                 let contact = &store[offset + i];
                 if takes_part(contact, &summaries) {
                     *place = SolvedContact {
@@ -676,12 +676,13 @@ fn round_radius(leaf: &Shape) -> f64 {
 /// Whether the solver takes a contact: touching, not a sensor, with a body that can move.
 fn takes_part(contact: &Contact, summaries: &[SlotSummary]) -> bool {
     let (a, b) = (&summaries[contact.body_a.index()], &summaries[contact.body_b.index()]);
-    contact.manifold.is_some()
-        && contact.touching
+    // The manifold last: of a contact apart, only its head (`Contact::prefetch_head`) is read.
+    contact.touching
         && !contact.sensor
         && (a.movable || b.movable)
         && a.exists
         && b.exists
+        && contact.manifold.is_some()
 }
 
 /// The solver's rows of one contact that `takes_part`, written over `constraint`.
