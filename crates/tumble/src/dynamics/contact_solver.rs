@@ -87,6 +87,24 @@ pub(crate) struct ContactPointInput {
     pub impulse: ContactImpulse,
 }
 
+/// The points a manifold is prepared from (`ContactConstraint::prepare_in_place`), read one at
+/// a time: the solver's set-up reads them from the contact's manifold and impulses in place
+/// rather than copying them into an array first.
+pub(crate) trait PointInputs {
+    fn len(&self) -> usize;
+    fn get(&self, i: usize) -> ContactPointInput;
+}
+
+impl PointInputs for &[ContactPointInput] {
+    fn len(&self) -> usize {
+        <[ContactPointInput]>::len(self)
+    }
+
+    fn get(&self, i: usize) -> ContactPointInput {
+        self[i]
+    }
+}
+
 #[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 struct PointConstraint {
     /// The contact's surface point on each body relative to its centre of mass at the start of
@@ -391,7 +409,7 @@ impl ContactConstraint {
         (com_a, com_b): (DVec3, DVec3),
         radii: (f64, f64),
         normal: DVec3,
-        points: &[ContactPointInput],
+        points: impl PointInputs,
         material: ContactMaterial,
         ctx: &StepContext,
     ) {
@@ -408,20 +426,20 @@ impl ContactConstraint {
         self.com_offset = com_b - com_a;
         self.material = material;
         self.point_count = points.len().min(4);
+        let point = |i: usize| points.get(i);
         self.rolling_impulse = DVec3::ZERO;
         self.torsional_impulse = 0.0;
         // The block's first guess: the points that ended the last step carrying load, if any did;
         // a new contact's points all free.
-        let loaded = points[..self.point_count]
-            .iter()
-            .enumerate()
-            .fold(0, |set, (i, p)| set | (RowSet::from(ctx.warm_starting && p.impulse.normal > 0.0) << i));
+        let loaded = (0..self.point_count)
+            .fold(0, |set, i| set | (RowSet::from(ctx.warm_starting && point(i).impulse.normal > 0.0) << i));
         self.free_rows = if loaded == 0 { ALL_ROWS } else { loaded };
         self.free_factors.iter_mut().for_each(FreeFactor::forget);
         // Only the manifold's points: the places past `point_count` keep whatever they held, as
         // nothing reads them (a rain of spheres' single points wrote three empty points of 150
         // bytes each beside each one, and preparing is bound by the memory it writes).
-        for (pc, input) in self.points.iter_mut().zip(&points[..self.point_count]) {
+        for (i, pc) in self.points[..self.point_count].iter_mut().enumerate() {
+            let input = point(i);
             // The narrow phase's point is midway between the surfaces; each body's anchor is its
             // own surface point, half the separation either side. Not the midpoint: the anchor
             // of a corner or face is a material point that turns with its body, and a midpoint
@@ -457,8 +475,8 @@ impl ContactConstraint {
         }
         self.coupling_start = pack_symmetric(&normal_coupling(&levers[..count], normal, a, b));
         let (tangent, twist) = if ctx.warm_starting {
-            points
-                .iter()
+            (0..points.len())
+                .map(point)
                 .fold((DVec3::ZERO, 0.0), |(t, w), p| (t + p.impulse.tangent_world, w + p.impulse.twist))
         } else {
             (DVec3::ZERO, 0.0)

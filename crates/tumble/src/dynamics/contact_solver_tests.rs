@@ -30,7 +30,7 @@ fn box_on_box(ctx: &StepContext) -> (ContactConstraint, SolverBody, SolverBody, 
         (com_a, com_b),
         (0.0, 0.0),
         DVec3::Z,
-        &points,
+        points.as_slice(),
         material,
         ctx,
     );

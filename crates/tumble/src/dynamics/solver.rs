@@ -20,9 +20,11 @@
 use crate::body::{Body, BodyKind};
 use crate::collision::contact_manager::{leaf, plan_proxies, ProxyPlan};
 use crate::collision::contact_store::{prefetch_ahead, prefetch_start, Reach, PREFETCH_AHEAD};
+use crate::collision::manifold::ContactPoint;
 use crate::dynamics::contact::Contact;
 use crate::dynamics::contact_solver::{
-    solve_group, warm_start_group, ContactConstraint, ContactPointInput, StillBlock, GROUP, GROUPS_PAY,
+    solve_group, warm_start_group, ContactConstraint, ContactImpulse, ContactPointInput, PointInputs,
+    StillBlock, GROUP, GROUPS_PAY,
 };
 use crate::dynamics::joint::Joint;
 use crate::dynamics::softness::Softness;
@@ -685,6 +687,29 @@ fn takes_part(contact: &Contact, summaries: &[SlotSummary]) -> bool {
         && contact.manifold.is_some()
 }
 
+/// A contact's manifold points with their impulses, as the solver's rows are prepared from them.
+struct ManifoldInputs<'a> {
+    points: &'a [ContactPoint],
+    impulses: &'a [ContactImpulse; 4],
+}
+
+impl PointInputs for ManifoldInputs<'_> {
+    #[inline(always)]
+    fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    #[inline(always)]
+    fn get(&self, i: usize) -> ContactPointInput {
+        let point = &self.points[i];
+        ContactPointInput {
+            point_world: point.point_world,
+            separation: point.separation,
+            impulse: self.impulses[i],
+        }
+    }
+}
+
 /// The solver's rows of one contact that `takes_part`, written over `constraint`.
 fn prepare_contact(
     constraint: &mut ContactConstraint,
@@ -702,21 +727,13 @@ fn prepare_contact(
         a.round_radius(ia, contact.child_a, world_bodies),
         b.round_radius(ib, contact.child_b, world_bodies),
     );
-    let mut points = [ContactPointInput::default(); 4];
-    for ((input, point), impulse) in points.iter_mut().zip(manifold.points()).zip(&contact.impulses) {
-        *input = ContactPointInput {
-            point_world: point.point_world,
-            separation: point.separation,
-            impulse: *impulse,
-        };
-    }
     constraint.prepare_in_place(
         (ia, ib),
         (&bodies[ia], &bodies[ib]),
         (a.com_world, b.com_world),
         radii,
         manifold.normal_world,
-        &points[..manifold.len()],
+        ManifoldInputs { points: manifold.points(), impulses: &contact.impulses },
         contact.material,
         ctx,
     );
