@@ -22,17 +22,19 @@ pub(crate) fn prefetch<T>(value: &T) {
 /// read).
 #[inline(always)]
 pub(crate) fn prefetch_at<T>(address: *const T) {
-    let start = address.cast::<u8>();
-    for offset in (0..std::mem::size_of::<T>()).step_by(LINE) {
-        prefetch_line(start.wrapping_add(offset));
-    }
+    prefetch_span(address.cast(), std::mem::size_of::<T>().div_ceil(LINE));
 }
 
 /// Starts loading the first `lines` cache lines of `value`.
 #[inline(always)]
 pub(crate) fn prefetch_lines<T>(value: &T, lines: usize) {
-    let start = (value as *const T).cast::<u8>();
-    for line in 0..lines.min(std::mem::size_of::<T>().div_ceil(LINE)) {
+    prefetch_span((value as *const T).cast(), lines.min(std::mem::size_of::<T>().div_ceil(LINE)));
+}
+
+/// Starts loading `lines` cache lines from `start`.
+#[inline(always)]
+fn prefetch_span(start: *const u8, lines: usize) {
+    for line in 0..lines {
         prefetch_line(start.wrapping_add(line * LINE));
     }
 }

@@ -10,14 +10,14 @@ use crate::dynamics::contact_solver::{ContactImpulse, ContactMaterial};
 use crate::id::BodyId;
 use crate::math::DVec3;
 
+/// The cache lines of a contact's head (`Contact::prefetch_head`).
+const HEAD_LINES: usize = 2;
+
 /// Laid out head first (`repr(C)`, one contact per run of whole cache lines): the fields the
 /// solver's take-part scan reads of every contact — bodies, leaves, flags, material — fill the
 /// first line, and the proxies and the manifold's start the second. That scan asks for those
 /// two lines instead of the contact's fourteen (`prefetch_head`); most of a rain's contacts are
 /// apart and the scan reads nothing else of them.
-/// The cache lines of a contact's head (`Contact::prefetch_head`).
-const HEAD_LINES: usize = 2;
-
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 #[repr(C, align(64))]
 pub(crate) struct Contact {

@@ -95,6 +95,8 @@ pub(crate) trait PointInputs {
     fn get(&self, i: usize) -> ContactPointInput;
 }
 
+/// Points made by hand (the tests').
+#[cfg(test)]
 impl PointInputs for &[ContactPointInput] {
     fn len(&self) -> usize {
         <[ContactPointInput]>::len(self)
