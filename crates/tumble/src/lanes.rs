@@ -48,6 +48,18 @@ pub(crate) trait Lane:
     fn mask_lane(mask: Self::Mask, k: usize) -> bool;
     fn any(mask: Self::Mask) -> bool;
 
+    /// The same value, which the optimiser may no longer trace to where it was read. For a value
+    /// read from a place, selected between per lane and written back to the same place
+    /// (`*p = select(mask, new, p.opaque())`): without it the compiler turns that into a masked
+    /// store of `new` (`vmaskmovpd`), which on AMD's Zen processors costs far more than the blend
+    /// and the plain store it replaces, and whose value a load that follows cannot take from the
+    /// store queue (the still manifolds' passes, contact_lanes.rs: 3-8% of the matched pyramid's
+    /// substeps). The same bits.
+    #[inline(always)]
+    fn opaque(self) -> Self {
+        self
+    }
+
     /// `if_true` where `mask` holds, else `if_false`, for masks.
     #[inline(always)]
     fn select_mask(mask: Self::Mask, if_true: Self::Mask, if_false: Self::Mask) -> Self::Mask {
@@ -212,6 +224,22 @@ impl Lane for f64x4 {
     #[inline(always)]
     fn any(mask: f64x4) -> bool {
         mask.any()
+    }
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    #[allow(unsafe_code)] // An empty `asm!` on a register, and the casts to and from it.
+    #[inline(always)]
+    fn opaque(self) -> f64x4 {
+        use std::arch::x86_64::__m256d;
+        // SAFETY: with AVX, `f64x4` is one `__m256d` (four `f64` in 32 bytes), and any bits are
+        // a valid value of either.
+        let mut register: __m256d = unsafe { std::mem::transmute::<f64x4, __m256d>(self) };
+        // SAFETY: an empty template: it reads and writes nothing but names the register, so the
+        // compiler must take its value as unknown.
+        unsafe {
+            std::arch::asm!("/* {0} */", inout(ymm_reg) register, options(pure, nomem, nostack, preserves_flags))
+        };
+        // SAFETY: as above.
+        unsafe { std::mem::transmute::<__m256d, f64x4>(register) }
     }
 }
 

@@ -426,8 +426,9 @@ fn solve_normal_rows<L: Lane>(
         };
         let vn = normal_velocities[i];
         let engaged = live[i] & (vn + bias).lt(zero);
-        m.relative_velocity[i] =
-            L::select(engaged, Lane::min(m.relative_velocity[i], vn), m.relative_velocity[i]);
+        // `opaque`: a blend and a store, not a masked store (lanes.rs).
+        let seen = m.relative_velocity[i].opaque();
+        m.relative_velocity[i] = L::select(engaged, Lane::min(seen, vn), seen);
         let k_ii = coupling[i][i];
         let gamma = L::select(mass_scale.gt(zero), k_ii * impulse_scale / mass_scale, zero);
         inputs.soft[i] = live[i] & gamma.ne(zero);
@@ -438,8 +439,9 @@ fn solve_normal_rows<L: Lane>(
     for i in 0..MAX_POINTS {
         let applied = deltas[i];
         let impulse = Lane::max(m.normal_impulse[i] + applied, zero);
-        m.normal_impulse[i] = L::select(live[i], impulse, m.normal_impulse[i]);
-        m.max_normal[i] = L::select(live[i], Lane::max(m.max_normal[i], applied), m.max_normal[i]);
+        let (old_impulse, old_max) = (m.normal_impulse[i].opaque(), m.max_normal[i].opaque());
+        m.normal_impulse[i] = L::select(live[i], impulse, old_impulse);
+        m.max_normal[i] = L::select(live[i], Lane::max(old_max, applied), old_max);
     }
     Some((active, deltas))
 }

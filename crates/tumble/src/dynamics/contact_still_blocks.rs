@@ -106,7 +106,8 @@ impl StillBlock {
         let m = &mut self.state;
         for i in 0..MAX_POINTS {
             let live = self.rows.live[i];
-            let (steady, age) = (m.steady_normal[i], m.steady_age[i]);
+            // `opaque`: a blend and a store, not a masked store (lanes.rs).
+            let (steady, age) = (m.steady_normal[i].opaque(), m.steady_age[i].opaque());
             let rate = Lane::min(h / age.clamp(lower, upper), one);
             m.steady_normal[i] = L::select(live, steady + rate * (m.normal_impulse[i] - steady), steady);
             m.steady_age[i] = L::select(live, age + h, age);
@@ -162,6 +163,9 @@ pub(crate) fn solve_group(
         block_group(contacts, free_rows, point_counts, &rows.live, inputs, active, use_bias)
     });
     // An idle lane's state is as it was (the one-manifold path leaves an idle manifold alone).
-    *state = select_state(active, state, &before);
+    // A resting group's lanes are all active: then there is nothing to select.
+    if !active.all() {
+        *state = select_state(active, state, &before);
+    }
     Some(velocities(&a, &b))
 }
