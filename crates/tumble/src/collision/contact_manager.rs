@@ -14,6 +14,7 @@ use super::narrow_phase::collide;
 use super::support::Rounded;
 use crate::body::{Body, BodyKind};
 use crate::dynamics::contact::Contact;
+use crate::dynamics::contact_solver::ContactMaterial;
 use crate::dynamics::material::Material;
 use crate::events::EventRecorder;
 use crate::id::{BodyId, SlotPool};
@@ -109,12 +110,26 @@ pub(crate) struct ContactManager {
     /// The broad phase's new pairs, refilled each step (kept to reuse the allocation).
     #[serde(skip)]
     new_pairs: Vec<(ProxyKey, ProxyKey)>,
+    /// The contacts to make for the new pairs that may collide, refilled each step.
+    #[serde(skip)]
+    new_contacts: Vec<NewContact>,
     /// What the threaded narrow phase found in each chunk of contacts, in contact order.
     #[serde(skip)]
     chunk_outcomes: Vec<ChunkOutcome>,
     /// The island links of the contacts, found by the narrow phase (`touching_links`).
     #[serde(skip)]
     links: Vec<(u32, u32)>,
+}
+
+/// What a new contact is made from (`Contact::new`'s arguments).
+#[derive(Clone, Debug)]
+struct NewContact {
+    proxies: (ProxyKey, ProxyKey),
+    bodies: (BodyId, BodyId),
+    children: (u32, u32),
+    material: ContactMaterial,
+    sensor: bool,
+    only_one_of_pair: bool,
 }
 
 /// What one chunk of the threaded narrow phase found: its contacts' island links and the few
@@ -239,7 +254,8 @@ impl ContactManager {
         // makes thousands of contacts then moves them once, not at every doubling).
         let contacts = &self.contacts;
         self.broad_phase.find_new_pairs_on(&mut new_pairs, threads, |pair| contacts.contains(pair));
-        self.contacts.reserve(new_pairs.len());
+        let mut new_contacts = std::mem::take(&mut self.new_contacts);
+        new_contacts.clear();
         for &(key_a, key_b) in &new_pairs {
             let (slot_a, child_a) = unpack(self.broad_phase.user_data(key_a));
             let (slot_b, child_b) = unpack(self.broad_phase.user_data(key_b));
@@ -256,16 +272,25 @@ impl ContactManager {
             if !a.filter.accepts(&b.filter) || joined(id_a, id_b) {
                 continue;
             }
-            self.contacts.push(Contact::new(
-                (key_a, key_b),
-                (id_a, id_b),
-                (child_a, child_b),
-                Material::combine(&a.material, &b.material),
-                a.is_sensor || b.is_sensor,
-                a.proxies.len() == 1 && b.proxies.len() == 1,
-            ));
+            new_contacts.push(NewContact {
+                proxies: (key_a, key_b),
+                bodies: (id_a, id_b),
+                children: (child_a, child_b),
+                material: Material::combine(&a.material, &b.material),
+                sensor: a.is_sensor || b.is_sensor,
+                only_one_of_pair: a.proxies.len() == 1 && b.proxies.len() == 1,
+            });
         }
+        // The contacts themselves (a kilobyte each) written on the threads: a pile's first step
+        // makes thousands (`extend_on_threads`).
+        self.contacts.extend_on_threads(
+            &new_contacts,
+            |n| n.proxies,
+            |n| Contact::new(n.proxies, n.bodies, n.children, n.material, n.sensor, n.only_one_of_pair),
+            threads,
+        );
         self.new_pairs = new_pairs;
+        self.new_contacts = new_contacts;
     }
 
     /// Updates every contact: drops those whose fat boxes parted, recomputes the manifolds of the

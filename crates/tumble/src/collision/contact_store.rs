@@ -34,6 +34,7 @@ use rustc_hash::FxHashSet;
 
 use super::broad_phase::ProxyKey;
 use crate::dynamics::contact::Contact;
+use crate::step_threads::{extend_on_threads, StepThreads};
 
 /// The pair of proxies of a contact, lower key first.
 pub(crate) type ProxyPair = (ProxyKey, ProxyKey);
@@ -113,16 +114,28 @@ impl ContactStore {
     }
 
     /// Appends a contact for a pair that has none.
+    #[cfg(test)]
     pub fn push(&mut self, contact: Contact) {
         let fresh = self.pairs.insert((contact.proxy_a, contact.proxy_b));
         debug_assert!(fresh, "a pair has at most one contact");
         self.contacts.push(contact);
     }
 
-    /// Makes room for `additional` more contacts.
-    pub fn reserve(&mut self, additional: usize) {
-        self.contacts.reserve(additional);
-        self.pairs.reserve(additional);
+    /// Appends a contact `make(n)` for each of `new`, whose pair (`pair_of(n)`) has none, in
+    /// order; the contacts are written on `threads` when there are many (`extend_on_threads`).
+    pub(crate) fn extend_on_threads<S: Sync>(
+        &mut self,
+        new: &[S],
+        pair_of: impl Fn(&S) -> ProxyPair,
+        make: impl Fn(&S) -> Contact + Sync,
+        threads: Option<&StepThreads>,
+    ) {
+        self.pairs.reserve(new.len());
+        for n in new {
+            let fresh = self.pairs.insert(pair_of(n));
+            debug_assert!(fresh, "a pair has at most one contact");
+        }
+        extend_on_threads(&mut self.contacts, new, make, threads);
     }
 
     /// Keeps the live contacts for which `keep` is true, in their order, and drops the rest
@@ -234,6 +247,27 @@ mod tests {
     fn contact(a: u32, b: u32) -> Contact {
         let key = |i| ProxyKey::new(ProxyKind::Dynamic, ProxyId(i));
         Contact::new_for_test(key(a), key(b))
+    }
+
+    /// Contacts made on threads are the contacts made one by one, in the same order, and their
+    /// pairs are known.
+    #[test]
+    fn contacts_made_on_threads_are_those_made_one_by_one() {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("pool");
+        let threads = StepThreads::begin(&pool);
+        let pairs: Vec<(u32, u32)> = (0..3000).map(|i| (2 * i, 2 * i + 1)).collect();
+        let (mut alone, mut shared) = (ContactStore::default(), ContactStore::default());
+        alone.push(contact(1, 7));
+        shared.push(contact(1, 7));
+        for &(a, b) in &pairs {
+            alone.push(contact(a, b));
+        }
+        let pair_of = |&(a, b): &(u32, u32)| (contact(a, b).proxy_a, contact(a, b).proxy_b);
+        shared.extend_on_threads(&pairs, pair_of, |&(a, b)| contact(a, b), Some(&threads));
+        let pair = |c: &Contact| (c.proxy_a.proxy_id().0, c.proxy_b.proxy_id().0);
+        assert_eq!(shared.len(), pairs.len() + 1);
+        assert_eq!(alone.iter().map(pair).collect::<Vec<_>>(), shared.iter().map(pair).collect::<Vec<_>>());
+        assert!(pairs.iter().all(|p| shared.contains(pair_of(p))));
     }
 
     #[test]

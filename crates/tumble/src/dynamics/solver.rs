@@ -34,7 +34,7 @@ use crate::id::{Slot, SlotPool};
 use crate::math::DVec3;
 use crate::profile::Phase;
 use crate::shape::Shape;
-use crate::step_threads::{for_each_chunk_of, StepThreads};
+use crate::step_threads::{for_each_chunk_of, resize_on_threads, StepThreads};
 use crate::world::World;
 use std::time::Instant;
 
@@ -324,7 +324,7 @@ impl World {
             bodies.len(),
             threads.is_some(),
         );
-        contacts.resize(count, ContactConstraint::EMPTY);
+        resize_on_threads(&mut contacts, count, ContactConstraint::EMPTY, threads);
         {
             let coloured = ColouredContacts::new(&mut contacts, &colouring);
             // Threads only where there are enough contacts to share (the result is the same).
@@ -359,7 +359,8 @@ impl World {
         let in_lanes = self.contacts_in_groups.unwrap_or(GROUPS_PAY);
         let mut blocks = std::mem::take(&mut self.still_blocks);
         // Each block is written over at the step's start (`fill_blocks`).
-        blocks.resize_with(if in_lanes { contacts.len().div_ceil(GROUP) } else { 0 }, StillBlock::default);
+        let block_count = if in_lanes { contacts.len().div_ceil(GROUP) } else { 0 };
+        resize_on_threads(&mut blocks, block_count, StillBlock::default(), threads);
         let lists = (&partition.constrained[..], &partition.unconstrained[..]);
         let joint_lists = (self.joints.slots_mut(), &joint_components);
         let data = SolveData::new(
