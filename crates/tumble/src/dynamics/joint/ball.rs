@@ -54,15 +54,31 @@ fn swing_row(pose: &JointPose, half_angle: f64) -> Option<(DVec3, f64)> {
     let normal = z_a.cross(z_b);
     let sin = normal.length();
     let theta = sin.atan2(z_a.dot(z_b));
+    Some((swing_axis(z_a, normal, sin, || theta)?, half_angle - theta))
+}
+
+/// The swing row's Jacobian axis alone (`swing_row`), for the warm start: the angle `θ`, an
+/// arctangent, only when the axes are aligned to round-off (a ragdoll's warm starts spent a
+/// third of its arctangents on angles they never used).
+fn swing_row_axis(pose: &JointPose) -> Option<DVec3> {
+    let (z_a, z_b) = (pose.axis_a(), pose.axis_b());
+    let normal = z_a.cross(z_b);
+    let sin = normal.length();
+    swing_axis(z_a, normal, sin, || sin.atan2(z_a.dot(z_b)))
+}
+
+/// The swing row's axis from `normal = z_a × z_b` and its length `sin`, with `theta` the swing
+/// angle (asked for only when `sin` is too small to give the axis).
+fn swing_axis(z_a: DVec3, normal: DVec3, sin: f64, theta: impl FnOnce() -> f64) -> Option<DVec3> {
     let n = if sin > 1e-9 {
         normal / sin
-    } else if theta > FRAC_PI_2 {
+    } else if theta() > FRAC_PI_2 {
         // Turned right over: any perpendicular axis brings it back.
         z_a.any_orthonormal_vector()
     } else {
         return None;
     };
-    Some((-n, half_angle - theta))
+    Some(-n)
 }
 
 /// The twist rows' axis now (half-way between the two joint axes).
@@ -97,8 +113,8 @@ impl BallJoint {
         if self.friction_torque > 0.0 {
             parts.friction.warm_start(a, b);
         }
-        if let Some(half_angle) = self.swing_limit {
-            if let Some((axis, _)) = swing_row(pose, half_angle) {
+        if self.swing_limit.is_some() {
+            if let Some(axis) = swing_row_axis(pose) {
                 parts.swing.warm_start(a, b, axis);
             }
         }
