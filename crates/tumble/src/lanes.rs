@@ -53,8 +53,8 @@ pub(crate) trait Lane:
     /// (`*p = select(mask, new, p.opaque())`): without it the compiler turns that into a masked
     /// store of `new` (`vmaskmovpd`), which on AMD's Zen processors costs far more than the blend
     /// and the plain store it replaces, and whose value a load that follows cannot take from the
-    /// store queue (the still manifolds' passes, contact_lanes.rs: 3-8% of the matched pyramid's
-    /// substeps). The same bits.
+    /// store queue (the still manifolds' passes, contact_lanes.rs: about 3% of the matched
+    /// pyramid's substeps). The same bits.
     #[inline(always)]
     fn opaque(self) -> Self {
         self
