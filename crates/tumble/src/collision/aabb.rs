@@ -68,6 +68,14 @@ impl Aabb {
         self.min.cmple(other.max).all() && other.min.cmple(self.max).all()
     }
 
+    /// The widest gap between the boxes along a world axis: positive when they are apart (then
+    /// every point of one is at least that far from every point of the other), else the least
+    /// overlap negated.
+    #[inline]
+    pub fn gap(&self, other: &Aabb) -> f64 {
+        (other.min - self.max).max(self.min - other.max).max_element()
+    }
+
     /// Surface area `2(xy + yz + zx)`: the cost measure of the surface-area heuristic, because the
     /// chance that a random ray or small box hits a convex volume is proportional to its area.
     #[inline]

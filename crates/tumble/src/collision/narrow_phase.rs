@@ -11,6 +11,7 @@
 //! the direction of the normal. Planes, height fields and triangle meshes go to
 //! `static_pairs::collide_static` first; compounds are split into leaves by the contact manager.
 
+use super::aabb::{shape_aabb, Aabb};
 use super::convex_contact::collide_convex;
 use super::manifold::Manifold;
 use super::polytope::Polytope;
@@ -79,7 +80,12 @@ fn collide_ordered(
     match (a, b) {
         (Shape::Sphere(sa), Shape::Sphere(sb)) => sphere_sphere(sa, pose_a, sb, pose_b, margin),
         (Shape::Sphere(sa), Shape::Capsule(cb)) => sphere_capsule(sa, pose_a, cb, pose_b, margin),
-        (Shape::Capsule(ca), Shape::Capsule(cb)) => capsule_capsule(ca, pose_a, cb, pose_b, margin),
+        (Shape::Capsule(ca), Shape::Capsule(cb)) => {
+            if bounds_apart(a, pose_a, b, pose_b, margin) {
+                return None;
+            }
+            capsule_capsule(ca, pose_a, cb, pose_b, margin)
+        }
         (Shape::Sphere(sa), Shape::Cuboid(bb)) => {
             box_sphere(bb, pose_b, sa, pose_a, margin).map(|m| m.flipped())
         }
@@ -95,6 +101,7 @@ fn collide_ordered(
                 }
                 collide_polytopes(&pa, pose_a, &pb, pose_b, margin, &mut cache.sat)
             }
+            _ if bounds_apart(a, pose_a, b, pose_b, margin) => None,
             _ => collide_convex(
                 &Rounded::of(a)?,
                 pose_a,
@@ -105,6 +112,22 @@ fn collide_ordered(
             ),
         },
     }
+}
+
+/// Whether boxes about the two shapes are farther apart than `margin` along a world axis, so the
+/// shapes are too and have no contact. The boxes take a few dozen operations (a hull's is the box
+/// about its bounding ball), against the hundreds of a GJK query or the dozens of two segments'
+/// closest points: most of a pile of ragdolls' limb pairs whose fat boxes overlap end here.
+/// Only for pairs that would go to those queries: the closed forms of spheres are as cheap as the
+/// boxes, and polytope pairs keep their separating axis in their cache even while apart.
+fn bounds_apart(a: &Shape, pose_a: &Transform, b: &Shape, pose_b: &Transform, margin: f64) -> bool {
+    let quick = |shape: &Shape, pose: &Transform| match shape {
+        Shape::ConvexHull(h) => {
+            Aabb::from_center_half_extents(pose.translation, DVec3::splat(h.bounding_radius()))
+        }
+        _ => shape_aabb(shape, pose),
+    };
+    quick(a, pose_a).gap(&quick(b, pose_b)) > margin
 }
 
 fn polytope(shape: &Shape) -> Option<Polytope<'_>> {
@@ -120,7 +143,7 @@ mod tests {
     use super::*;
     use crate::math::DQuat;
     use crate::scenes::rng::SplitMix64;
-    use crate::shape::{ConvexHull, Cuboid};
+    use crate::shape::{Capsule, Cone, ConvexHull, Cuboid, Cylinder, Sphere};
 
     /// The bounding-ball early out never drops a contact: over random hulls and boxes brought
     /// to about the sum of their radii from random directions, every pair it turns away also
@@ -166,5 +189,67 @@ mod tests {
         }
         assert!(turned_away > 500, "{turned_away} pairs turned away");
         assert!(touching_within_reach > 0, "no pair touched near the edge of reach");
+    }
+
+    /// The boxes' early out never drops a contact: over random pairs that go to GJK or to two
+    /// segments' closest points (capsules, cylinders, cones, boxes, hulls, spheres against those),
+    /// brought to about where their boxes part from random directions, every pair it turns away
+    /// also gets no manifold from the query itself. Both outcomes occur, and some pairs the
+    /// bounding balls would not turn away are turned away.
+    #[test]
+    fn the_bounding_box_early_out_drops_no_contact() {
+        let mut rng = SplitMix64::new(23);
+        let unit = |rng: &mut SplitMix64| {
+            DVec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)).normalize()
+        };
+        let mut shapes = Vec::new();
+        for k in 0..15 {
+            let (r, h) = (rng.range(0.03, 0.2), rng.range(0.05, 0.4));
+            shapes.push(match k % 5 {
+                0 => Shape::Capsule(Capsule::new(r, h).expect("a capsule")),
+                1 => Shape::Cylinder(Cylinder::new(r, h).expect("a cylinder")),
+                2 => Shape::Cone(Cone::new(r, h).expect("a cone")),
+                3 => Shape::Cuboid(Cuboid::new(DVec3::new(r, h, 0.5 * (r + h))).expect("a box")),
+                _ => {
+                    let points: Vec<DVec3> = (0..10).map(|_| unit(&mut rng) * rng.range(0.1, 0.25)).collect();
+                    Shape::ConvexHull(ConvexHull::new(&points).expect("a hull"))
+                }
+            });
+        }
+        shapes.push(Shape::Sphere(Sphere::new(0.1).expect("a sphere")));
+        let reach = |s: &Shape| Rounded::of(s).expect("convex").bounding_radius();
+        let (mut turned_away, mut kept, mut touching, mut inside_balls) = (0, 0, 0, 0);
+        for trial in 0..6000 {
+            let (a, b) = (&shapes[trial % shapes.len()], &shapes[(trial * 7 + 3) % shapes.len()]);
+            let (a, b) = if kind_rank(a) <= kind_rank(b) { (a, b) } else { (b, a) };
+            let margin = rng.range(0.0, 0.1);
+            let turn = |rng: &mut SplitMix64| DQuat::from_axis_angle(unit(rng), rng.range(0.0, 6.3));
+            let pose_a = Transform::new(DVec3::new(1.0, -2.0, 0.5), turn(&mut rng));
+            let offset = unit(&mut rng) * (reach(a) + reach(b) + margin) * rng.range(0.3, 1.1);
+            let pose_b = Transform::new(pose_a.translation + offset, turn(&mut rng));
+            let full = match (a, b) {
+                (Shape::Capsule(ca), Shape::Capsule(cb)) => capsule_capsule(ca, &pose_a, cb, &pose_b, margin),
+                (Shape::Sphere(_), Shape::Sphere(_) | Shape::Capsule(_) | Shape::Cuboid(_)) => continue,
+                _ if polytope(a).is_some() && polytope(b).is_some() => continue,
+                _ => {
+                    let (ra, rb) = (Rounded::of(a).expect("convex"), Rounded::of(b).expect("convex"));
+                    collide_convex(&ra, &pose_a, &rb, &pose_b, margin, &mut DVec3::ZERO)
+                }
+            };
+            let found = collide(a, &pose_a, b, &pose_b, margin, &mut PairCache::default());
+            if bounds_apart(a, &pose_a, b, &pose_b, margin) {
+                turned_away += 1;
+                inside_balls += usize::from(offset.length() < reach(a) + reach(b) + margin);
+                assert!(full.is_none(), "trial {trial}: the early out dropped a contact");
+                assert!(found.is_none(), "trial {trial}");
+            } else {
+                kept += 1;
+                touching += usize::from(full.is_some());
+                assert_eq!(found.is_some(), full.is_some(), "trial {trial}");
+            }
+        }
+        assert!(turned_away > 500 && kept > 500, "{turned_away} turned away, {kept} kept");
+        assert!(touching > 100, "{touching} pairs touching");
+        assert!(inside_balls > 100, "{inside_balls} pairs within the bounding balls turned away");
     }
 }
