@@ -11,7 +11,7 @@
 //! the direction of the normal. Planes, height fields and triangle meshes go to
 //! `static_pairs::collide_static` first; compounds are split into leaves by the contact manager.
 
-use super::aabb::{shape_aabb, Aabb};
+use super::aabb::shape_aabb;
 use super::convex_contact::collide_convex;
 use super::manifold::Manifold;
 use super::polytope::Polytope;
@@ -113,23 +113,17 @@ fn collide_ordered(
     }
 }
 
-/// Whether boxes about the two shapes are farther apart than `margin` along a world axis, so the
-/// shapes are too and have no contact (a hull's box is the one about its bounding ball). Taken by
-/// two capsules, whose segments' closest points cost several times the boxes: in a pile of
-/// ragdolls, most limb pairs whose fat boxes overlap end here. Not before GJK: a pair turned away
-/// keeps a stale start direction (`collide_convex`'s `warm_dir`), the ragdolls' results then
-/// differed from round-off on, and over eleven nearby damping ratios their largest joint
-/// separation came out higher (median 6.35 cm against 5.7), not told apart from their chaos but
-/// not worth the risk for a narrow phase 5% faster. Spheres' closed forms are as cheap as the
-/// boxes, and polytope pairs keep their separating axis in their cache even while apart.
+/// Whether the tight boxes of the two shapes (`shape_aabb`) are farther apart than `margin` along
+/// a world axis, so the shapes are too and have no contact. Taken by two capsules, whose segments'
+/// closest points cost several times the boxes: in a pile of ragdolls, most limb pairs whose fat
+/// boxes overlap end here. Not before GJK: a pair turned away keeps a stale start direction
+/// (`collide_convex`'s `warm_dir`), the ragdolls' results then differed from round-off on, and
+/// over eleven nearby damping ratios their largest joint separation came out higher (median
+/// 6.35 cm against 5.7), not told apart from their chaos but not worth the risk for a narrow phase
+/// 5% faster. Spheres' closed forms are as cheap as the boxes, and polytope pairs keep their
+/// separating axis in their cache even while apart.
 fn bounds_apart(a: &Shape, pose_a: &Transform, b: &Shape, pose_b: &Transform, margin: f64) -> bool {
-    let quick = |shape: &Shape, pose: &Transform| match shape {
-        Shape::ConvexHull(h) => {
-            Aabb::from_center_half_extents(pose.translation, DVec3::splat(h.bounding_radius()))
-        }
-        _ => shape_aabb(shape, pose),
-    };
-    quick(a, pose_a).gap(&quick(b, pose_b)) > margin
+    shape_aabb(a, pose_a).gap(&shape_aabb(b, pose_b)) > margin
 }
 
 fn polytope(shape: &Shape) -> Option<Polytope<'_>> {
@@ -237,7 +231,7 @@ mod tests {
                 _ if polytope(a).is_some() && polytope(b).is_some() => continue,
                 _ => {
                     let (ra, rb) = (Rounded::of(a).expect("convex"), Rounded::of(b).expect("convex"));
-                    collide_convex(&ra, &pose_a, &rb, &pose_b, margin, &mut DVec3::ZERO)
+                    collide_convex(&ra, &pose_a, &rb, &pose_b, margin, &mut DVec3::default())
                 }
             };
             let found = collide(a, &pose_a, b, &pose_b, margin, &mut PairCache::default());
