@@ -15,22 +15,22 @@
 //! Torque enters as two half kicks on the world momentum around the free flow: `L += τ h/2`, flow,
 //! `L += τ h/2`.
 
+use wide::f64x4;
+
+use crate::lanes::Lane;
 use crate::math::{DQuat, DVec3};
+use crate::sin_cos::sin_cos;
 
 /// Rotates `rotation` (principal frame → world) and the body-frame momentum `l_principal` by the
-/// exact flow of `Lᵢ²/(2Iᵢ)` about principal axis `AXIS` (0, 1, 2) for time `h` (given `1/Iᵢ`:
-/// a multiplication where a division would lengthen the chain of dependent operations).
+/// exact flow of `Lᵢ²/(2Iᵢ)` about principal axis `AXIS` (0, 1, 2), given the sine and cosine of
+/// half the angle `Lᵢ h / Iᵢ` ([`half_angle`]).
 #[inline]
 fn rotate_about_principal_axis<const AXIS: usize>(
     rotation: &mut DQuat,
     l_principal: &mut DVec3,
-    inverse_inertia_principal: DVec3,
-    h: f64,
+    (hs, hc): (f64, f64),
 ) {
-    let angle = l_principal[AXIS] * inverse_inertia_principal[AXIS] * h;
-    // One sine and cosine, of the half angle (the quaternion's); the whole angle's follow from
-    // the double-angle formulas.
-    let (hs, hc) = (0.5 * angle).sin_cos();
+    // The whole angle's sine and cosine from the half angle's (the quaternion's): double angles.
     let (s, c) = (2.0 * hs * hc, (hc - hs) * (hc + hs));
     // Body turns by +angle about its own axis; its momentum, seen from the body, turns by −angle.
     let (i, j) = [(1, 2), (2, 0), (0, 1)][AXIS];
@@ -44,6 +44,32 @@ fn rotate_about_principal_axis<const AXIS: usize>(
         1 => DQuat::from_xyzw(x * hc - z * hs, w * hs + y * hc, z * hc + x * hs, w * hc - y * hs),
         _ => DQuat::from_xyzw(x * hc + y * hs, y * hc - x * hs, w * hs + z * hc, w * hc - z * hs),
     };
+}
+
+/// Half the angle of the flow about principal axis `axis` for time `h`, given `1/Iᵢ` (a
+/// multiplication where a division would lengthen the chain of dependent operations).
+#[inline]
+fn half_angle(l_principal: DVec3, inverse_inertia_principal: DVec3, axis: usize, h: f64) -> f64 {
+    0.5 * (l_principal[axis] * inverse_inertia_principal[axis] * h)
+}
+
+/// The sines and cosines of `N` angles, four at a time in SIMD lanes and the rest one by one
+/// (`sin_cos.rs`: the same bits either way).
+#[inline]
+fn sin_cos_each<const N: usize>(angles: [f64; N]) -> [(f64, f64); N] {
+    let mut out = [(0.0, 1.0); N];
+    let mut fours = angles.chunks_exact(4);
+    for (k, four) in fours.by_ref().enumerate() {
+        let (s, c) = sin_cos(f64x4::new([four[0], four[1], four[2], four[3]]));
+        for lane in 0..4 {
+            out[4 * k + lane] = (s.lane(lane), c.lane(lane));
+        }
+    }
+    let done = N - fours.remainder().len();
+    for (place, &angle) in out[done..].iter_mut().zip(fours.remainder()) {
+        *place = sin_cos(angle);
+    }
+    out
 }
 
 /// Advances a free rigid rotation by `h` with the symmetric splitting. `rotation` maps the principal
@@ -89,12 +115,14 @@ pub fn free_rotation_flow_steps_lanes<const N: usize>(
     }
     let inverse_inertia = inertia_principal.map(DVec3::recip);
     let rotate = |axis: usize, q: &mut [DQuat; N], l: &mut [DVec3; N], h: f64| {
-        for lane in 0..N {
-            let (q, l, inverse) = (&mut q[lane], &mut l[lane], inverse_inertia[lane]);
+        let half_angles: [f64; N] = std::array::from_fn(|k| half_angle(l[k], inverse_inertia[k], axis, h));
+        let half_turns = sin_cos_each(half_angles);
+        for (lane, half_turn) in half_turns.into_iter().enumerate() {
+            let (q, l) = (&mut q[lane], &mut l[lane]);
             match axis {
-                0 => rotate_about_principal_axis::<0>(q, l, inverse, h),
-                1 => rotate_about_principal_axis::<1>(q, l, inverse, h),
-                _ => rotate_about_principal_axis::<2>(q, l, inverse, h),
+                0 => rotate_about_principal_axis::<0>(q, l, half_turn),
+                1 => rotate_about_principal_axis::<1>(q, l, half_turn),
+                _ => rotate_about_principal_axis::<2>(q, l, half_turn),
             }
         }
     };
@@ -133,7 +161,10 @@ pub fn rotate_by_angular_velocity(rotation: DQuat, angular_velocity: DVec3, h: f
     if angle == 0.0 {
         return rotation;
     }
-    (DQuat::from_axis_angle(angular_velocity.normalize(), angle) * rotation).normalize()
+    // `DQuat::from_axis_angle`, with the sine and cosine of `sin_cos.rs`.
+    let (hs, hc) = sin_cos(0.5 * angle);
+    let axis = angular_velocity.normalize() * hs;
+    (DQuat::from_xyzw(axis.x, axis.y, axis.z, hc) * rotation).normalize()
 }
 
 #[cfg(test)]
@@ -190,11 +221,17 @@ mod tests {
         let mut q = q0;
         let mut l = q0.inverse() * l_world;
         let inverse = inertia.recip();
-        rotate_about_principal_axis::<0>(&mut q, &mut l, inverse, 0.025);
-        rotate_about_principal_axis::<1>(&mut q, &mut l, inverse, 0.025);
-        rotate_about_principal_axis::<2>(&mut q, &mut l, inverse, 0.05);
-        rotate_about_principal_axis::<1>(&mut q, &mut l, inverse, 0.025);
-        rotate_about_principal_axis::<0>(&mut q, &mut l, inverse, 0.025);
+        let half_turn = |l: DVec3, axis: usize, h: f64| sin_cos(half_angle(l, inverse, axis, h));
+        let turn = half_turn(l, 0, 0.025);
+        rotate_about_principal_axis::<0>(&mut q, &mut l, turn);
+        let turn = half_turn(l, 1, 0.025);
+        rotate_about_principal_axis::<1>(&mut q, &mut l, turn);
+        let turn = half_turn(l, 2, 0.05);
+        rotate_about_principal_axis::<2>(&mut q, &mut l, turn);
+        let turn = half_turn(l, 1, 0.025);
+        rotate_about_principal_axis::<1>(&mut q, &mut l, turn);
+        let turn = half_turn(l, 0, 0.025);
+        rotate_about_principal_axis::<0>(&mut q, &mut l, turn);
         assert!((q * l - l_world).length() < 1e-14);
         assert!(q1.dot(q.normalize()).abs() > 1.0 - 1e-15);
     }

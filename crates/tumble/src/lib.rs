@@ -21,6 +21,7 @@ pub mod profile;
 pub mod query;
 pub mod scenes;
 pub mod shape;
+mod sin_cos;
 pub mod snapshot;
 mod state_hash;
 mod step;

@@ -330,4 +330,4 @@ pub(crate) fn still_pair(a: &SolverBody, b: &SolverBody) -> bool {
 }
 
 /// How many unconstrained bodies integrate side by side.
-pub(crate) const FREE_FLOW_LANES: usize = 4;
+pub(crate) const FREE_FLOW_LANES: usize = 8;
