@@ -202,7 +202,7 @@ impl World {
     pub(crate) fn solve_continuous(&mut self) {
         let mut candidates = std::mem::take(&mut self.continuous_candidates);
         for k in 0..self.bullet_starts.len() {
-            let (slot, start) = self.step_start_states[self.bullet_starts[k]];
+            let (slot, start) = self.bullet_starts[k];
             let Some(body) = self.bodies.iter_slot(slot) else { continue };
             if !body.bullet || body.kind != BodyKind::Dynamic || body.isolated || !body.is_awake() {
                 continue;

@@ -137,16 +137,13 @@ pub struct World {
     pub(crate) scratch: crate::dynamics::island::IslandScratch,
     /// Bodies the last step isolated for non-finite state (`non_finite.rs`).
     pub(crate) non_finite_events: Vec<crate::non_finite::NonFiniteBody>,
-    /// Each simulated body's slot and state at the start of the step, kept between steps to reuse
-    /// the allocation (`non_finite.rs`).
-    #[serde(skip)]
-    pub(crate) step_start_states: Vec<(usize, crate::body::BodyState)>,
     /// Static proxies under a bullet's sweep, refilled for each bullet (`continuous.rs`).
     #[serde(skip)]
     pub(crate) continuous_candidates: Vec<crate::collision::ProxyId>,
-    /// The entries of `step_start_states` that are bullets, for the continuous stage.
+    /// Each simulated bullet's slot and state at the start of the step, for the continuous stage
+    /// (`non_finite.rs` keeps them).
     #[serde(skip)]
-    pub(crate) bullet_starts: Vec<usize>,
+    pub(crate) bullet_starts: Vec<(usize, crate::body::BodyState)>,
     /// The slots of the bodies whose state the solve left non-finite (`non_finite.rs`).
     #[serde(skip)]
     pub(crate) non_finite_after_solve: Vec<usize>,
@@ -249,7 +246,6 @@ impl World {
             pool: None,
             scratch: Default::default(),
             non_finite_events: Vec::new(),
-            step_start_states: Vec::new(),
             continuous_candidates: Vec::new(),
             bullet_starts: Vec::new(),
             non_finite_after_solve: Vec::new(),

@@ -515,9 +515,12 @@ impl World {
             for (i, (slot, written)) in slots.iter_mut().zip(written).enumerate() {
                 *written = WrittenBack::default();
                 if let Some(body) = slot.value_mut().filter(|body| body.is_awake() && !body.isolated) {
+                    let start = body.state;
                     bodies[offset + i].write_back(body);
                     written.non_finite = crate::non_finite::left_non_finite(body);
                     written.proxies = if written.non_finite {
+                        // Back where it was, for check 2 to isolate it there (non_finite.rs).
+                        body.state = start;
                         ProxyPlan::Later
                     } else {
                         plan_proxies(broad_phase, body, dt)
