@@ -69,7 +69,8 @@ MATCHED = {
     "chain": ["--substeps", "1"],
     # Without the relax pass: 7.8 cm, against Rapier's 6.9 cm (2026-12-07). At 3 substeps the
     # largest joint separation is chaotic: over eleven damping ratios within 1e-6 of 10 it spans
-    # 4.8-6.4 cm, median 5.7, the default 6.37 (2026-12-07); Rapier 6.86 cm.
+    # 4.8-6.4 cm, median 5.7, the default 6.37 (2026-12-07); Rapier 6.86 cm. With the lanes'
+    # sines and cosines (new last bits wherever bodies turn) the default gives 6.72 cm.
     "ragdolls": ["--substeps", "3"],
     # 3 substeps of one solve pass and no relax pass: six passes a step where 4 substeps of a
     # solve and a relax took twelve (the substeps' time halves; the step at 120 steps, where the
