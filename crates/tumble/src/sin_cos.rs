@@ -13,8 +13,8 @@
 //! depends on the instruction set, so the bits are the same on every x86-64 build and in every
 //! lane. Rounding to the nearest integer is done by adding and subtracting 1.5·2⁵² (exact for
 //! `|x| < 2⁵¹`). The error is at most about one and a half units in the last place (the tests
-//! bound it against the C library). Angles beyond [`REDUCED_UP_TO`], where the three-part reduction loses digits, and
-//! infinities go to the C library lane by lane; a NaN stays NaN.
+//! bound it against the C library). Angles beyond [`REDUCED_UP_TO`], where the three-part
+//! reduction loses digits, and infinities go to the C library lane by lane; a NaN stays NaN.
 
 use crate::lanes::Lane;
 
@@ -52,9 +52,9 @@ const COS: [f64; 6] = [
     0.041666666666666595,
 ];
 
-/// The polynomial of `coefficients` (highest first) at `z`, by Estrin's scheme: three pairs
-/// `c z + c'` side by side, then joined with `z²` and `z⁴`, four dependent multiply–adds deep
-/// instead of Horner's five.
+/// The polynomial of the coefficients `c` (highest first) at `z`, by Estrin's scheme: three pairs
+/// `c z + c'` side by side, then joined with `z²` and `z⁴` — five dependent operations deep
+/// instead of Horner's ten.
 #[inline(always)]
 fn polynomial<L: Lane>(c: &[f64; 6], z: L) -> L {
     let pair = |high: f64, low: f64| L::splat(high) * z + L::splat(low);
