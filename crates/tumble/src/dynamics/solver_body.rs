@@ -257,11 +257,12 @@ impl SolverBody {
         }
     }
 
-    /// All `substeps` substeps of bodies no constraint acts on, at once, up to four side by side:
+    /// All `substeps` substeps of bodies no constraint acts on, at once, up to
+    /// [`FREE_FLOW_LANES`] side by side:
     /// the velocity and position stages in turn — and when no torque or angular damping acts
     /// between them, the rotation as one merged free flow (`free_rotation_flow_steps_lanes`: the
     /// same map to round-off in 4n + 1 principal rotations instead of 5n, the world inertia and
-    /// rotation matrix only once, and four bodies' rotations overlapped). Each body's numbers are
+    /// rotation matrix only once, and the bodies' rotations overlapped). Each body's numbers are
     /// its own, whatever bodies share its group.
     pub fn integrate_unconstrained(
         bodies: &mut [Option<&mut SolverBody>; FREE_FLOW_LANES],
@@ -329,5 +330,7 @@ pub(crate) fn still_pair(a: &SolverBody, b: &SolverBody) -> bool {
     a.barely_turned && b.barely_turned && (b.dp - a.dp).length_squared() < STILL_DISTANCE * STILL_DISTANCE
 }
 
-/// How many unconstrained bodies integrate side by side.
+/// How many unconstrained bodies integrate side by side: two SIMD vectors of sines and cosines
+/// (`sin_cos.rs`). With one, the chain of rotations waited on each vector's result; sixteen were
+/// no faster than eight (docs/free-rotation.md).
 pub(crate) const FREE_FLOW_LANES: usize = 8;
