@@ -71,14 +71,16 @@ MATCHED = {
     # largest joint separation is chaotic: over eleven damping ratios within 1e-6 of 10 it spans
     # 4.8-6.4 cm, median 5.7, the default 6.37 (2026-12-07); Rapier 6.86 cm. With the lanes'
     # sines and cosines (new last bits wherever bodies turn) the default gives 6.72 cm, and eleven
-    # ratios within 1e-6 of 10 span 5.29-6.96 cm (median 6.28). Every ragdoll joint has limits,
-    # so no ragdoll is a joint tree (joint_tree/mod.rs): its joints go row by row, which is why
-    # the joint trees' projection settings do not move this number and more passes do (3
-    # substeps of 2 solve passes: 3.3 cm; 4 substeps: 2.8 cm). 2 substeps of 3 solve passes and
-    # no relax pass span only 5.98-6.55 cm over the same ratios, but ran 0.74x as fast (the
-    # narrow phase of a livelier pile: 370 against 226 ms over 120 steps); 2 substeps of 2 solve
-    # passes and a relax pass, 6.49-6.55 cm, 0.81x.
-    "ragdolls": ["--substeps", "3"],
+    # ratios within 1e-6 of 10 span 5.29-6.96 cm (median 6.28). These are the ragdolls solved
+    # row by row (joint_tree_limits=false): every ragdoll joint has limits, and by default the
+    # joint trees now take limit rows in (docs/joint-tree.md, "Limits in the tree"), which holds
+    # every joint within 0.01 cm at 2 to 8 substeps but costs more than Rapier's quality needs (2
+    # substeps: 88 steps/s, against 161 row by row at 3; 2026-12-08). Row by row, more passes
+    # help (3 substeps of 2 solve passes: 3.3 cm; 4 substeps: 2.8 cm); 2 substeps of 3 solve
+    # passes and no relax pass span only 5.98-6.55 cm over the same ratios, but ran 0.74x as
+    # fast (the narrow phase of a livelier pile: 370 against 226 ms over 120 steps); 2 substeps
+    # of 2 solve passes and a relax pass, 6.49-6.55 cm, 0.81x.
+    "ragdolls": ["--substeps", "3", "--solver", "joint_tree_limits=false"],
     # 3 substeps of one solve pass and no relax pass: six passes a step where 4 substeps of a
     # solve and a relax took twelve (the substeps' time halves; the step at 120 steps, where the
     # narrow phase of the landing hulls is most of it, 1.05-1.2x). The deepest contact at the last

@@ -107,6 +107,7 @@ impl Checker<'_> {
             *target = self.number_or(at, key, value, *target, non_negative, ">= 0")?;
         }
         solver.joint_trees = w.joint_trees.unwrap_or(solver.joint_trees);
+        solver.joint_tree_limits = w.joint_tree_limits.unwrap_or(solver.joint_tree_limits);
         sleep.enabled = w.sleep.unwrap_or(sleep.enabled);
         Ok((solver, sleep))
     }

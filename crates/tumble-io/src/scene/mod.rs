@@ -9,8 +9,8 @@
 //! substeps = 8                   # solver (engine defaults): substeps, solve_iterations,
 //! solve_iterations = 1           #   relax_iterations, contact_hertz, contact_damping_ratio,
 //! contact_hertz = 60.0           #   joint_hertz, joint_damping_ratio, steady_load_time,
-//!                                 #   joint_trees (true/false), joint_projection_iterations,
-//!                                 #   joint_projection_tolerance
+//!                                 #   joint_trees (true/false), joint_tree_limits (true/false),
+//!                                 #   joint_projection_iterations, joint_projection_tolerance
 //! sleep = true                   # may resting islands fall asleep
 //!
 //! [[body]]

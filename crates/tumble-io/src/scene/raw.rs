@@ -41,6 +41,7 @@ pub(super) struct RawWorld {
     pub joint_damping_ratio: Option<Number>,
     pub steady_load_time: Option<Number>,
     pub joint_trees: Option<bool>,
+    pub joint_tree_limits: Option<bool>,
     pub joint_projection_iterations: Option<Integer>,
     pub joint_projection_tolerance: Option<Number>,
     pub sleep: Option<bool>,

@@ -79,11 +79,18 @@ pub struct SolverSettings {
     /// Solve the rows holding tree-shaped groups of joints together (chains, robot arms)
     /// exactly in each pass, all at once (`dynamics/joint_tree/`), rather than row by row. Exact
     /// rows do not stretch under load, whatever the mass ratios; `joint_hertz` then sets only how
-    /// fast drift is corrected. Loops, distance joints, limits, motors and springs are solved row
-    /// by row either way, and so are joints that have any of those (`docs/joint-tree.md`).
+    /// fast drift is corrected. Loops, distance joints, motors, springs and friction are solved
+    /// row by row either way, and so are joints that have any of those (`docs/joint-tree.md`).
     /// Default true.
     #[serde(default = "default_true")]
     pub joint_trees: bool,
+    /// Let joints with limits into the joint trees, whose solve then takes each limit row in
+    /// while it pushes (`docs/joint-tree.md`, "Limits in the tree"): a ragdoll's joints hold to
+    /// a tenth of a millimetre instead of stretching by centimetres, at the cost of solving the
+    /// figure exactly. False keeps such joints, and the figures they act on, row by row.
+    /// Default true.
+    #[serde(default = "default_true")]
+    pub joint_tree_limits: bool,
     /// Most Newton steps per substep of the joint trees' position projection, which moves each
     /// tree's bodies after the position stage until its rows' position errors are at most
     /// `joint_projection_tolerance` (`docs/joint-tree.md`, "Holding the positions"). Most
@@ -125,6 +132,7 @@ impl Default for SolverSettings {
             relax_iterations: 1,
             steady_load_time: 0.5,
             joint_trees: true,
+            joint_tree_limits: true,
             joint_projection_iterations: default_joint_projection_iterations(),
             joint_projection_tolerance: default_joint_projection_tolerance(),
         }
@@ -280,7 +288,7 @@ impl World {
         // Joint trees: the figures whose joints' equality rows are solved exactly.
         let mut trees = std::mem::take(&mut self.joint_trees);
         if self.solver_settings.joint_trees {
-            trees.build(&mut self.joints, &bodies);
+            trees.build(&mut self.joints, &bodies, self.solver_settings.joint_tree_limits);
         } else {
             trees.clear(&mut self.joints);
         }
@@ -409,7 +417,7 @@ impl World {
                     // relax pass (`docs/joint-tree.md`, "Where it runs in the step").
                     if has_joints {
                         data.serial(thread, |trees, joints, bodies| {
-                            trees.solve(joints, bodies, tree_bias_rate)
+                            trees.solve(joints, bodies, tree_bias_rate, ctx.inv_h)
                         });
                     }
                     data.contacts_in_groups(

@@ -15,6 +15,7 @@
 use super::equality::EqualityRows;
 use super::frames::JointPose;
 use super::hard_softness;
+use super::limit_rows::LimitRows;
 use super::parts::{AngularAxisPart, AngularFrictionPart, PointPart, RowDrive};
 use super::settings::{check_angle_limits, check_non_negative, Limits};
 use crate::dynamics::solver::StepContext;
@@ -171,6 +172,38 @@ impl BallJoint {
     /// The point rows (`equality.rs`).
     pub(crate) fn push_equality_rows(pose: &JointPose, rows: &mut EqualityRows) {
         rows.push_point(pose);
+    }
+
+    /// The swing and twist limit rows (`limit_rows.rs`): the swing row first, if any.
+    pub(crate) fn push_limit_rows(&self, parts: &BallParts, pose: &JointPose, rows: &mut LimitRows) {
+        if let Some(half_angle) = self.swing_limit {
+            match swing_row(pose, half_angle) {
+                Some((axis, c)) => rows.push_angular(Some(axis), c, parts.swing.impulse),
+                None => rows.push_angular(None, f64::INFINITY, parts.swing.impulse),
+            }
+        }
+        if let Some(limits) = &self.twist_limits {
+            let axis = twist_axis(pose);
+            let twist = pose.twist_angle();
+            rows.push_angular(axis, twist - limits.lower, parts.twist_lower.impulse);
+            rows.push_angular(axis.map(|axis| -axis), limits.upper - twist, parts.twist_upper.impulse);
+            rows.choose_nearer_side(rows.len - 2);
+        }
+    }
+
+    /// Adds an impulse found for limit row `k` (`push_limit_rows`' order) to its part's.
+    pub(crate) fn add_limit_impulse(&self, parts: &mut BallParts, mut k: usize, lambda: f64) {
+        if self.swing_limit.is_some() {
+            if k == 0 {
+                parts.swing.impulse += lambda;
+                return;
+            }
+            k -= 1;
+        }
+        match k {
+            0 => parts.twist_lower.impulse += lambda,
+            _ => parts.twist_upper.impulse += lambda,
+        }
     }
 
     /// Adds impulses found for the equality rows to the accumulated ones.

@@ -32,6 +32,16 @@ pub(crate) struct RowJacobian {
 }
 
 impl RowJacobian {
+    /// The row of a linear axis part (`parts/axis.rs`).
+    pub fn of_axis(jacobian: &AxisJacobian) -> RowJacobian {
+        RowJacobian {
+            linear_a: jacobian.linear,
+            angular_a: jacobian.angular_a,
+            linear_b: jacobian.linear,
+            angular_b: jacobian.angular_b,
+        }
+    }
+
     /// The row's velocity `Ċ` now.
     #[inline]
     pub fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f64 {
@@ -48,7 +58,7 @@ pub(crate) struct EqualityRows {
 }
 
 impl EqualityRows {
-    fn push(&mut self, row: RowJacobian, c: f64) {
+    pub fn push(&mut self, row: RowJacobian, c: f64) {
         self.rows[self.len] = row;
         self.error[self.len] = c;
         self.len += 1;
@@ -91,13 +101,7 @@ impl EqualityRows {
 
     /// One linear axis row (`parts/axis.rs`).
     pub fn push_axis(&mut self, jacobian: &AxisJacobian, c: f64) {
-        let row = RowJacobian {
-            linear_a: jacobian.linear,
-            angular_a: jacobian.angular_a,
-            linear_b: jacobian.linear,
-            angular_b: jacobian.angular_b,
-        };
-        self.push(row, c);
+        self.push(RowJacobian::of_axis(jacobian), c);
     }
 }
 

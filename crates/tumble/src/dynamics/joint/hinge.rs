@@ -11,6 +11,7 @@
 use super::equality::EqualityRows;
 use super::frames::{wrap_angle, JointPose};
 use super::hard_softness;
+use super::limit_rows::LimitRows;
 use super::parts::{AngularAxisPart, HingeAxes, HingeRotationPart, PointPart, RowDrive};
 use super::settings::{
     check_angle_limits, check_finite, check_motor, check_non_negative, check_spring, Limits, Motor,
@@ -130,6 +131,24 @@ impl HingeJoint {
     pub(crate) fn push_equality_rows(pose: &JointPose, rows: &mut EqualityRows) {
         rows.push_point(pose);
         rows.push_hinge_rotation(&hinge_axes(pose));
+    }
+
+    /// The two sides of the angle range (`limit_rows.rs`): lower, upper.
+    pub(crate) fn push_limit_rows(&self, parts: &HingeParts, pose: &JointPose, rows: &mut LimitRows) {
+        if let Some(limits) = &self.limits {
+            let (axis, angle) = (pose.axis_a(), pose.twist_angle());
+            rows.push_angular(Some(axis), angle - limits.lower, parts.lower.impulse);
+            rows.push_angular(Some(-axis), limits.upper - angle, parts.upper.impulse);
+            rows.choose_nearer_side(0);
+        }
+    }
+
+    /// Adds an impulse found for limit row `k` (0 lower, 1 upper) to its part's.
+    pub(crate) fn add_limit_impulse(parts: &mut HingeParts, k: usize, lambda: f64) {
+        match k {
+            0 => parts.lower.impulse += lambda,
+            _ => parts.upper.impulse += lambda,
+        }
     }
 
     /// Adds impulses found for the equality rows to the accumulated ones.

@@ -24,6 +24,7 @@ pub(crate) mod equality;
 mod fixed;
 pub(crate) mod frames;
 mod hinge;
+pub(crate) mod limit_rows;
 pub(crate) mod parts;
 mod queries;
 mod settings;
@@ -322,7 +323,7 @@ impl Joint {
         ctx: &StepContext,
         use_bias: bool,
     ) {
-        // A tree joint has only equality rows (`equality_row_count`), and the tree solves them
+        // A tree joint has only equality and limit rows (`tree_row_count`), and the tree solves them
         // exactly in the biased pass (`joint_tree/`). A projected tree's rows carry no bias, so
         // there is none to relax either; an unprojected tree's rows are relaxed row by row here,
         // before the contacts, so contacts keep the last word.
@@ -341,44 +342,65 @@ impl Joint {
     #[cfg(test)]
     pub(crate) fn equality_rows(&self, a: &SolverBody, b: &SolverBody) -> Option<equality::EqualityRows> {
         let mut rows = equality::EqualityRows::default();
-        self.equality_rows_into(a, b, &mut rows).then_some(rows)
+        let mut limits = limit_rows::LimitRows::default();
+        self.tree_rows_into(a, b, &mut rows, &mut limits).then_some(rows)
     }
 
-    /// [`Joint::equality_rows`] written over `rows` (whose arrays need not be clear): the joint
-    /// tree asks for every joint's rows several times a substep, and a returned set of rows is
-    /// 600 bytes built and then copied. `false` for a kind without equality rows.
-    pub(crate) fn equality_rows_into(
+    /// The rows the joint tree solves for this joint now, written over `rows` and `limits`
+    /// (whose arrays need not be clear): the equality rows, and the limit rows
+    /// (`limit_rows.rs`), which the tree takes in while they push. The tree asks for every
+    /// joint's rows several times a substep, and a returned set of rows is 600 bytes built and
+    /// then copied. `false` for a kind without equality rows.
+    pub(crate) fn tree_rows_into(
         &self,
         a: &SolverBody,
         b: &SolverBody,
         rows: &mut equality::EqualityRows,
+        limits: &mut limit_rows::LimitRows,
     ) -> bool {
         let pose = self.frames.pose(a, b);
         rows.len = 0;
-        match &self.kind {
-            JointKind::Ball(_) => BallJoint::push_equality_rows(&pose, rows),
-            JointKind::Hinge(_) => HingeJoint::push_equality_rows(&pose, rows),
-            JointKind::Slider(_) => SliderJoint::push_equality_rows(&pose, rows),
-            JointKind::Fixed(_) => FixedJoint::push_equality_rows(&pose, rows),
-            JointKind::Distance(_) => return false,
+        limits.clear();
+        match (&self.kind, &self.parts) {
+            (JointKind::Ball(j), JointParts::Ball(p)) => {
+                BallJoint::push_equality_rows(&pose, rows);
+                j.push_limit_rows(p, &pose, limits);
+            }
+            (JointKind::Hinge(j), JointParts::Hinge(p)) => {
+                HingeJoint::push_equality_rows(&pose, rows);
+                j.push_limit_rows(p, &pose, limits);
+            }
+            (JointKind::Slider(j), JointParts::Slider(p)) => {
+                SliderJoint::push_equality_rows(&pose, rows);
+                j.push_limit_rows(p, &pose, limits);
+            }
+            (JointKind::Fixed(_), _) => FixedJoint::push_equality_rows(&pose, rows),
+            _ => return false,
         }
         true
     }
 
     /// How many equality rows the joint tree solves for this joint (0: none — distance joints,
-    /// and joints with limits, a motor, a spring or friction). Those optional rows act on the
-    /// figure through effective masses the row-by-row solve gets only approximately; against a
-    /// tree's exact rows they fight it: a motor driving a hinge into its limit rocked ±0.04 rad
-    /// at the limit instead of resting there. Such joints stay row by row.
-    pub(crate) fn equality_row_count(&self) -> usize {
+    /// and joints with a motor, a spring or friction, or, unless `limits`, a limit). Those rows
+    /// act on the figure through effective masses the row-by-row solve gets only approximately;
+    /// against a tree's exact rows they fight it: a motor driving a hinge into its limit rocked
+    /// ±0.04 rad at the limit instead of resting there. Such joints stay row by row. A limit
+    /// need not keep a joint out: the tree takes a limit row into the joint's block while it
+    /// pushes (`limit_rows.rs`).
+    pub(crate) fn tree_row_count(&self, limits: bool) -> usize {
         let optional = match &self.kind {
             JointKind::Ball(j) => {
-                j.swing_limit.is_some() || j.twist_limits.is_some() || j.friction_torque > 0.0
+                j.friction_torque > 0.0 || (!limits && (j.swing_limit.is_some() || j.twist_limits.is_some()))
             }
             JointKind::Hinge(j) => {
-                j.limits.is_some() || j.motor.is_some() || j.spring.is_some() || j.friction_torque > 0.0
+                j.motor.is_some()
+                    || j.spring.is_some()
+                    || j.friction_torque > 0.0
+                    || (!limits && j.limits.is_some())
             }
-            JointKind::Slider(j) => j.limits.is_some() || j.motor.is_some() || j.spring.is_some(),
+            JointKind::Slider(j) => {
+                j.motor.is_some() || j.spring.is_some() || (!limits && j.limits.is_some())
+            }
             JointKind::Fixed(_) | JointKind::Distance(_) => false,
         };
         if optional {
@@ -389,6 +411,17 @@ impl Joint {
             JointKind::Hinge(_) | JointKind::Slider(_) => 5,
             JointKind::Fixed(_) => 6,
             JointKind::Distance(_) => 0,
+        }
+    }
+
+    /// Adds the impulse the joint tree found for limit row `k` (`tree_rows_into`'s order) to its
+    /// part's accumulated one.
+    pub(crate) fn add_limit_impulse(&mut self, k: usize, lambda: f64) {
+        match (&self.kind, &mut self.parts) {
+            (JointKind::Ball(j), JointParts::Ball(p)) => j.add_limit_impulse(p, k, lambda),
+            (JointKind::Hinge(_), JointParts::Hinge(p)) => HingeJoint::add_limit_impulse(p, k, lambda),
+            (JointKind::Slider(_), JointParts::Slider(p)) => SliderJoint::add_limit_impulse(p, k, lambda),
+            _ => {}
         }
     }
 

@@ -9,9 +9,10 @@
 //! * motor `ẋ → target_speed` with `|F| ≤ max_force` (N);
 //! * spring `C = x − target` with `k = m_eff (2π·hertz)²`.
 
-use super::equality::EqualityRows;
+use super::equality::{EqualityRows, RowJacobian};
 use super::frames::JointPose;
 use super::hard_softness;
+use super::limit_rows::{LimitRow, LimitRows};
 use super::parts::{AxisJacobian, AxisPart, RotationPart, RowDrive};
 use super::settings::{check_finite, check_limits, check_motor, check_spring, Limits, Motor, SpringSettings};
 use crate::dynamics::softness::Softness;
@@ -127,6 +128,31 @@ impl SliderJoint {
         rows.push_rotation(RotationPart::error(pose.rotation_a, pose.rotation_b));
         for jacobian in &perpendicular {
             rows.push_axis(jacobian, jacobian.linear.dot(pose.separation));
+        }
+    }
+
+    /// The two sides of the translation range (`limit_rows.rs`): lower, upper.
+    pub(crate) fn push_limit_rows(&self, parts: &SliderParts, pose: &JointPose, rows: &mut LimitRows) {
+        if let Some(limits) = &self.limits {
+            let (axis, _) = jacobians(pose);
+            let translation = axis.linear.dot(pose.separation);
+            let side = |jacobian, error, impulse| LimitRow {
+                jacobian: RowJacobian::of_axis(&jacobian),
+                error,
+                impulse,
+                eligible: true,
+            };
+            rows.push(side(axis, translation - limits.lower, parts.lower.impulse));
+            rows.push(side(axis.negated(), limits.upper - translation, parts.upper.impulse));
+            rows.choose_nearer_side(0);
+        }
+    }
+
+    /// Adds an impulse found for limit row `k` (0 lower, 1 upper) to its part's.
+    pub(crate) fn add_limit_impulse(parts: &mut SliderParts, k: usize, lambda: f64) {
+        match k {
+            0 => parts.lower.impulse += lambda,
+            _ => parts.upper.impulse += lambda,
         }
     }
 

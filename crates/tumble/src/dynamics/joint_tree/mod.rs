@@ -23,22 +23,25 @@
 //! Bodies that do not move in the solve (static, kinematic, asleep) are one "ground": a joint to
 //! the ground has a single body neighbour. A joint leaf would have an empty block, so a figure
 //! hung from the ground is rooted at that joint; a second joint to the ground, or any joint that
-//! closes a loop, stays with the row-by-row solve, as do distance joints and joints with limits,
-//! motors, springs or friction (`Joint::equality_row_count`), and every joint of a figure one of
-//! those also acts on (`leave_out_held_figures`). The rows solved here are rigid at the velocity
-//! level; their drift is taken out by the position projection (`project_positions`), or, with
-//! the projection off, fed back at the rate `β` of the joint softness. Warm starting, force
+//! closes a loop, stays with the row-by-row solve, as do distance joints and joints with motors,
+//! springs or friction (`Joint::tree_row_count`), and every joint of a figure one of those also
+//! acts on (`leave_out_held_figures`). A joint's limit rows join its block while they push (an
+//! active set, `solve`), so a ragdoll is a tree too. The rows solved here are rigid at the
+//! velocity level; their drift is taken out by the position projection (`projection.rs`), or,
+//! with the projection off, fed back at the rate `β` of the joint softness. Warm starting, force
 //! reporting and breaking use the same accumulated impulses as the row-by-row parts.
 
 pub(crate) mod block;
+mod projection;
 
-use crate::body::Body;
 use crate::dynamics::joint::equality::EqualityRows;
+use crate::dynamics::joint::limit_rows::{LimitRows, MAX_LIMIT_ROWS};
 use crate::dynamics::joint::Joint;
 use crate::dynamics::solver_body::SolverBody;
 use crate::id::{RawId, Slot, SlotPool};
-use crate::math::{DMat3, DVec3};
+use crate::math::DVec3;
 use block::{Block, BlockVector, Ldlt, MAX_DIM};
+use std::ops::Range;
 
 const NONE: u32 = u32::MAX;
 
@@ -49,10 +52,32 @@ const CHORD_TURN: f64 = 0.1;
 /// How many times the position projection halves a step that made the error larger.
 const MAX_HALVINGS: u32 = 4;
 
-/// What a solve makes of the rows: their velocities `−β C`, or their position errors zero.
+/// Rounds of the limit rows' active set in one velocity solve that may both take rows in and
+/// let them go; after these, rounds only let go of rows pulling (up to [`MAX_ACTIVE_SET_ROUNDS`]).
+const CHOOSING_ROUNDS: u32 = 3;
+
+/// Most solves of the trees in one pass while the limit rows' active set changes.
+const MAX_ACTIVE_SET_ROUNDS: u32 = 6;
+
+/// How far below its target velocity (rad/s or m/s) a limit row left out may end a round before
+/// it is taken in: round-off, not a physical tolerance.
+const ACTIVATION_SLACK: f64 = 1e-9;
+
+/// What `assemble` found.
+struct Assembled {
+    /// The largest position error of any equality row, or of an eligible limit row past its
+    /// limit (how far past; in the projection, whether taken in or not).
+    largest_error: f64,
+    /// Some joint has limit rows.
+    limited: bool,
+}
+
+/// What a solve makes of the rows: their velocities `−β C` (the equality rows) and at least their
+/// targets (the limit rows: `−C/h` before the limit, `−β C` past it), or their position errors
+/// zero (the equality rows, and the limit rows past their limits).
 #[derive(Clone, Copy, Debug)]
 enum Target {
-    Velocity { bias_rate: f64 },
+    Velocity { bias_rate: f64, inv_h: f64 },
     Position,
 }
 
@@ -66,8 +91,18 @@ enum NodeKind {
 #[derive(Clone, Copy, Debug)]
 struct Node {
     kind: NodeKind,
-    /// 6 for a body, the number of equality rows for a joint.
+    /// 6 for a body; for a joint, its equality rows and the limit rows taken in this pass.
     dim: usize,
+    /// For a joint: the number of its equality rows (its block's first rows).
+    equality_dim: usize,
+    /// For a joint: its body slots (a, b) as last assembled.
+    ends: (u32, u32),
+    /// For a joint: its limit rows as last assembled, and which of them are in its block.
+    limits: LimitRows,
+    active: [bool; MAX_LIMIT_ROWS],
+    /// For a joint's limit rows in a velocity solve: `Ċ` before the solve, and its target.
+    limit_velocity: [f64; MAX_LIMIT_ROWS],
+    limit_target: [f64; MAX_LIMIT_ROWS],
     /// The parent's index in `nodes` (always later), or `NONE` for a root.
     parent: u32,
     /// For a joint: the nodes of its bodies that are its children (`NONE` where unused).
@@ -90,6 +125,12 @@ impl Node {
         Node {
             kind,
             dim,
+            equality_dim: dim,
+            ends: (0, 0),
+            limits: LimitRows::default(),
+            active: [false; MAX_LIMIT_ROWS],
+            limit_velocity: [0.0; MAX_LIMIT_ROWS],
+            limit_target: [0.0; MAX_LIMIT_ROWS],
             parent: NONE,
             body_children: [NONE; 2],
             coupling: Block::zero(0, 0),
@@ -129,8 +170,10 @@ pub(crate) struct JointTrees {
     /// Per figure root (a body slot): a joint outside the trees acts on the figure
     /// (`leave_out_held_figures`).
     held: Vec<bool>,
-    /// The node ranges of the free figures (trees rooted at a body, not hung from the ground).
-    free_figures: Vec<std::ops::Range<usize>>,
+    /// The node ranges of the trees, and of the free figures among them (trees rooted at a
+    /// body, not hung from the ground).
+    trees: Vec<Range<usize>>,
+    free_figures: Vec<Range<usize>>,
     /// Each free figure's centre of mass and angular momentum about it before the projection.
     momenta: Vec<(DVec3, DVec3)>,
 }
@@ -154,6 +197,7 @@ impl JointTrees {
     pub fn clear(&mut self, joints: &mut SlotPool<Joint>) {
         self.nodes.clear();
         self.free_figures.clear();
+        self.trees.clear();
         self.key.clear();
         for (_, joint) in joints.iter_mut() {
             joint.in_tree = false;
@@ -161,7 +205,8 @@ impl JointTrees {
     }
 
     /// Builds this step's trees from the joints being solved, and marks each joint `in_tree`.
-    pub fn build(&mut self, joints: &mut SlotPool<Joint>, bodies: &[SolverBody]) {
+    /// `limits`: joints with limits may be tree joints (`SolverSettings::joint_tree_limits`).
+    pub fn build(&mut self, joints: &mut SlotPool<Joint>, bodies: &[SolverBody], limits: bool) {
         self.factored = false;
         self.tree_joints.clear();
         self.next_key.clear();
@@ -172,7 +217,7 @@ impl JointTrees {
         // Accept joints in slot order while they keep the graph a forest.
         for (_, joint) in joints.iter_mut() {
             joint.in_tree = false;
-            if !joint.solving || joint.equality_row_count() == 0 {
+            if !joint.solving || joint.tree_row_count(limits) == 0 {
                 continue;
             }
             let (ia, ib) = (joint.body_a.index(), joint.body_b.index());
@@ -194,7 +239,7 @@ impl JointTrees {
                 let (moves_a, moves_b) =
                     (moves(&bodies[joint.body_a.index()]), moves(&bodies[joint.body_b.index()]));
                 self.tree_joints.push(id.index() as u32);
-                self.next_key.push((id, joint.equality_row_count() as u8, moves_a, moves_b));
+                self.next_key.push((id, joint.tree_row_count(limits) as u8, moves_a, moves_b));
             }
         }
         // The same joints, rows and moving ends as last step make the same trees: keep them (the
@@ -206,6 +251,7 @@ impl JointTrees {
         std::mem::swap(&mut self.key, &mut self.next_key);
         self.nodes.clear();
         self.free_figures.clear();
+        self.trees.clear();
         self.breadth_first.clear();
         if self.tree_joints.is_empty() {
             return;
@@ -269,7 +315,7 @@ impl JointTrees {
                 NodeKind::Joint { slot: k } => {
                     let slot = self.tree_joints[k as usize];
                     let joint = joints.iter_slot(slot as usize).expect("tree joints are live");
-                    (NodeKind::Joint { slot }, joint.equality_row_count())
+                    (NodeKind::Joint { slot }, joint.tree_row_count(limits))
                 }
             };
             let mut node = Node::new(kind, dim);
@@ -288,6 +334,7 @@ impl JointTrees {
         let mut start = 0;
         for (i, node) in self.nodes.iter().enumerate() {
             if node.parent == NONE {
+                self.trees.push(start..i + 1);
                 if matches!(node.kind, NodeKind::Body { .. }) {
                     self.free_figures.push(start..i + 1);
                 }
@@ -298,7 +345,8 @@ impl JointTrees {
 
     /// Takes out of the trees every figure (the moving bodies a tree's joints connect) that a
     /// joint left to the row-by-row solve also acts on: one closing a loop, a distance joint, one
-    /// with a limit, motor, spring or friction. Its joints go row by row too.
+    /// with a motor, spring or friction (or a limit, with `joint_tree_limits` off). Its joints go
+    /// row by row too.
     ///
     /// Solved exactly, such a figure fights that joint: the tree makes its rows exact and rigid
     /// after the joint's soft rows have acted, so the joint sees its bodies move by more than its
@@ -391,16 +439,48 @@ impl JointTrees {
         self.breadth_first.push((kind, parent));
     }
 
-    /// One exact solve of every tree's equality rows: makes each row's velocity `−β C` (`bias_rate`
-    /// β; 0 in the relax pass, and in every pass while the position projection holds the trees),
-    /// updates the bodies' velocities and adds the impulses to the joints' accumulated ones.
-    pub fn solve(&mut self, joints: &mut [Slot<Joint>], bodies: &mut [SolverBody], bias_rate: f64) {
+    /// One exact solve of every tree's rows: makes each equality row's velocity `−β C`
+    /// (`bias_rate` β; 0 in the relax pass, and in every pass while the position projection holds
+    /// the trees), and each limit row's at least its target, pushing only (below); updates the
+    /// bodies' velocities and adds the impulses to the joints' accumulated ones.
+    ///
+    /// The limit rows are an active set: a row is taken into its joint's block, as one more
+    /// equality row with its target velocity (`−C/h` before the limit, speculative as in the
+    /// row-by-row solve; `−β C` past it), while it pushes. It starts in the set if it pushed at the
+    /// end of the last pass (its accumulated impulse is positive) or its velocity is below its
+    /// target now; after each solve, a row whose accumulated impulse would turn negative leaves
+    /// (its impulse goes back to zero, an impulse the next solve applies), and one left out whose
+    /// velocity would end below its target comes in, and the trees are solved again. After
+    /// [`CHOOSING_ROUNDS`] rounds rows only leave, so the rounds end.
+    pub fn solve(
+        &mut self,
+        joints: &mut [Slot<Joint>],
+        bodies: &mut [SolverBody],
+        bias_rate: f64,
+        inv_h: f64,
+    ) {
         if self.nodes.is_empty() {
             return;
         }
-        self.assemble(joints, bodies, Target::Velocity { bias_rate }, true);
-        self.factor();
-        self.solve_factored();
+        let target = Target::Velocity { bias_rate, inv_h };
+        // Tree by tree: a tree whose active set changes is solved again alone.
+        for t in 0..self.trees.len() {
+            let tree = self.trees[t].clone();
+            let mut round = 0;
+            loop {
+                let limited = self.assemble(tree.clone(), joints, bodies, target, true, round == 0).limited;
+                self.factor(tree.clone());
+                self.solve_factored(tree.clone());
+                round += 1;
+                if !limited
+                    || round == MAX_ACTIVE_SET_ROUNDS
+                    || !self.update_active_set(tree.clone(), round > CHOOSING_ROUNDS)
+                {
+                    break;
+                }
+            }
+        }
+        self.factored = true;
         for node in &self.nodes {
             match node.kind {
                 NodeKind::Body { slot } => {
@@ -414,215 +494,101 @@ impl JointTrees {
                     for (l, x) in lambda.iter_mut().zip(&node.x).take(node.dim) {
                         *l = -x;
                     }
-                    joint.add_equality_impulse(&lambda[..node.dim]);
+                    joint.add_equality_impulse(&lambda[..node.equality_dim]);
+                    let mut m = node.equality_dim;
+                    for k in 0..node.limits.len {
+                        if node.active[k] {
+                            joint.add_limit_impulse(k, lambda[m]);
+                            m += 1;
+                        } else if node.limits.rows[k].impulse != 0.0 {
+                            // Let go of: the impulse the solve applied takes it back to zero.
+                            joint.add_limit_impulse(k, -node.limits.rows[k].impulse);
+                        }
+                    }
                 }
             }
         }
     }
 
-    /// Moves the trees' bodies until every tree row's position error is at most `tolerance`, by
-    /// at most `max_iterations` Newton steps: each the smallest mass-weighted displacement
-    /// `Δx = M⁻¹Jᵀλ` with `J Δx = −C` (post-stabilisation, Cline & Pai 2003). Velocities are left
-    /// as they are. Run after each substep's position stage, it takes out the drift the substep
-    /// made instead of feeding it back through the velocities over the next substeps
-    /// (`docs/joint-tree.md`, "Holding the positions").
-    ///
-    /// While every tree body turned by less than [`CHORD_TURN`] in the substep (`h |ω|`), the
-    /// first step reuses the factors of the substep's velocity solve, whose Jacobians are off by
-    /// that turn: a chord step, which takes out all but about `h |ω|` of the drift without
-    /// refactoring, and is not counted. A step that leaves the largest error larger than it was
-    /// is halved (up to [`MAX_HALVINGS`] times): far from the constraint surface a full step can
-    /// overshoot, and a projection that makes things worse feeds a diverging loop.
-    ///
-    /// Moving bodies without touching their velocities changes a figure's angular momentum by
-    /// `Σ m Δx × v` and the turn of its inertias: the drift the projection takes out is mostly
-    /// centripetal (the anchors of a spinning figure fly outward along straight lines), and a
-    /// free six-link chain spinning in zero gravity lost 0.36% of its angular momentum in ten
-    /// seconds. So each free figure (one not hung from the ground) gets back the angular momentum
-    /// it had before, as a rigid spin of the whole figure about its centre of mass, which leaves
-    /// its joints' rows as they were (`restore_angular_momentum`).
-    pub fn project_positions(
-        &mut self,
-        joints: &[Slot<Joint>],
-        bodies: &mut [SolverBody],
-        world_bodies: &SlotPool<Body>,
-        tolerance: f64,
-        max_iterations: u32,
-        h: f64,
-    ) {
-        if self.nodes.is_empty() {
-            return;
-        }
-        let mut momenta = std::mem::take(&mut self.momenta);
-        momenta.clear();
-        for figure in &self.free_figures {
-            let centre = self.figure_centre(figure.clone(), bodies, world_bodies);
-            momenta.push((centre, self.figure_momentum(figure.clone(), centre, bodies, world_bodies)));
-        }
-        self.project(joints, bodies, tolerance, max_iterations, h);
-        for (figure, &(centre, before)) in self.free_figures.iter().zip(&momenta) {
-            self.restore_angular_momentum(figure.clone(), centre, before, bodies, world_bodies);
-        }
-        self.momenta = momenta;
-    }
-
-    /// The body nodes of a figure: (slot, position now).
-    fn figure_bodies<'a>(
-        &'a self,
-        figure: std::ops::Range<usize>,
-        bodies: &'a [SolverBody],
-        world_bodies: &'a SlotPool<Body>,
-    ) -> impl Iterator<Item = (usize, DVec3)> + 'a {
-        self.nodes[figure].iter().filter_map(move |node| match node.kind {
-            NodeKind::Body { slot } => {
-                let start = world_bodies.iter_slot(slot as usize).expect("tree bodies are live").com_world();
-                Some((slot as usize, start + bodies[slot as usize].dp))
-            }
-            NodeKind::Joint { .. } => None,
-        })
-    }
-
-    /// A figure's centre of mass now (which the projection keeps: `Σ m Δx = 0`).
-    fn figure_centre(
-        &self,
-        figure: std::ops::Range<usize>,
-        bodies: &[SolverBody],
-        world_bodies: &SlotPool<Body>,
-    ) -> DVec3 {
-        let (weighted, mass) =
-            self.figure_bodies(figure, bodies, world_bodies).fold((DVec3::ZERO, 0.0), |(w, m), (slot, x)| {
-                let mass = 1.0 / bodies[slot].inv_mass;
-                (w + mass * x, m + mass)
-            });
-        weighted / mass
-    }
-
-    /// A figure's angular momentum about `centre`.
-    fn figure_momentum(
-        &self,
-        figure: std::ops::Range<usize>,
-        centre: DVec3,
-        bodies: &[SolverBody],
-        world_bodies: &SlotPool<Body>,
-    ) -> DVec3 {
-        self.figure_bodies(figure, bodies, world_bodies)
-            .map(|(slot, x)| {
-                let body = &bodies[slot];
-                let (mass, inertia) = body.mass_matrix().expect("tree bodies have a mass matrix");
-                mass * (x - centre).cross(body.v) + inertia * body.w
-            })
-            .sum()
-    }
-
-    /// Gives a free figure back the angular momentum `before` (about its centre of mass `centre`)
-    /// by spinning it as one rigid body by `δω = I⁻¹ (L_before − L_now)`, `I` the figure's inertia
-    /// about its centre: every body gets `δω × r` and `δω`. A rigid spin keeps the figure's
-    /// momentum and changes no joint's relative velocity (up to `δω × C`, `C` the joint's
-    /// remaining error, within the projection's tolerance).
-    fn restore_angular_momentum(
-        &self,
-        figure: std::ops::Range<usize>,
-        centre: DVec3,
-        before: DVec3,
-        bodies: &mut [SolverBody],
-        world_bodies: &SlotPool<Body>,
-    ) {
-        let lost = before - self.figure_momentum(figure.clone(), centre, bodies, world_bodies);
-        if lost == DVec3::ZERO {
-            return;
-        }
-        let mut inertia = DMat3::ZERO;
-        for (slot, x) in self.figure_bodies(figure.clone(), bodies, world_bodies) {
-            let (mass, own) = bodies[slot].mass_matrix().expect("tree bodies have a mass matrix");
-            let r = x - centre;
-            inertia += own + mass * (DMat3::from_diagonal(DVec3::splat(r.length_squared())) - outer(r, r));
-        }
-        let spin = inertia.inverse() * lost;
-        if !spin.is_finite() {
-            return;
-        }
-        for node in &self.nodes[figure] {
-            if let NodeKind::Body { slot } = node.kind {
-                let start = world_bodies.iter_slot(slot as usize).expect("tree bodies are live").com_world();
-                let body = &mut bodies[slot as usize];
-                body.v += spin.cross(start + body.dp - centre);
-                body.w += spin;
-            }
-        }
-    }
-
-    /// The projection itself (see `project_positions`).
-    fn project(
-        &mut self,
-        joints: &[Slot<Joint>],
-        bodies: &mut [SolverBody],
-        tolerance: f64,
-        max_iterations: u32,
-        h: f64,
-    ) {
-        let turned = |node: &Node| match node.kind {
-            NodeKind::Body { slot } => h * bodies[slot as usize].w.length(),
-            NodeKind::Joint { .. } => 0.0,
-        };
-        let mut chord = self.factored && self.nodes.iter().all(|node| turned(node) < CHORD_TURN);
-        let mut budget = max_iterations;
-        let (mut before, mut halvings) = (f64::INFINITY, 0);
-        loop {
-            let error = self.assemble(joints, bodies, Target::Position, false);
-            if error > before && halvings < MAX_HALVINGS {
-                halvings += 1;
-                self.take_step(bodies, -0.5);
+    /// After a velocity solve: takes out of the active set every limit row whose accumulated
+    /// impulse the solve would make negative, and (unless `leave_only`) takes in every eligible
+    /// row left out whose velocity would end below its target. Whether the set changed.
+    fn update_active_set(&mut self, tree: Range<usize>, leave_only: bool) -> bool {
+        let mut changed = false;
+        for i in tree {
+            if !matches!(self.nodes[i].kind, NodeKind::Joint { .. }) || self.nodes[i].limits.len == 0 {
                 continue;
             }
-            if error <= tolerance {
-                return;
-            }
-            if !std::mem::take(&mut chord) {
-                if budget == 0 {
-                    return;
+            let (ia, ib) = self.nodes[i].ends;
+            let change = |slot: u32| {
+                self.body_node(i, slot).map_or([0.0; 6], |n| {
+                    let x = self.nodes[n].x;
+                    [x[0], x[1], x[2], x[3], x[4], x[5]]
+                })
+            };
+            let (dva, dvb) = (change(ia), change(ib));
+            let node = &mut self.nodes[i];
+            let mut m = node.equality_dim;
+            for k in 0..node.limits.len {
+                let row = &node.limits.rows[k];
+                if node.active[k] {
+                    if row.impulse - node.x[m] < 0.0 {
+                        node.active[k] = false;
+                        changed = true;
+                    }
+                    m += 1;
+                } else if !leave_only && row.eligible {
+                    let j = &row.jacobian;
+                    let dot =
+                        |u: DVec3, d: &[f64; 6], at: usize| u.x * d[at] + u.y * d[at + 1] + u.z * d[at + 2];
+                    let velocity =
+                        node.limit_velocity[k] + dot(j.linear_b, &dvb, 0) + dot(j.angular_b, &dvb, 3)
+                            - dot(j.linear_a, &dva, 0)
+                            - dot(j.angular_a, &dva, 3);
+                    if velocity < node.limit_target[k] - ACTIVATION_SLACK {
+                        node.active[k] = true;
+                        changed = true;
+                    }
                 }
-                budget -= 1;
-                self.assemble(joints, bodies, Target::Position, true);
-                self.factor();
             }
-            self.solve_factored();
-            for node in &mut self.nodes {
-                let [x, y, z, ax, ay, az, ..] = node.x;
-                node.step = [x, y, z, ax, ay, az];
-            }
-            self.take_step(bodies, 1.0);
-            (before, halvings) = (error, 0);
         }
+        changed
     }
 
-    /// Moves every tree body by `fraction` of its node's `step`, and scales the steps by
-    /// `|fraction|` (so that −½ takes back half of the step just taken and leaves the other half
-    /// as the step).
-    fn take_step(&mut self, bodies: &mut [SolverBody], fraction: f64) {
-        for node in &mut self.nodes {
-            if let NodeKind::Body { slot } = node.kind {
-                let [x, y, z, ax, ay, az] = node.step;
-                bodies[slot as usize]
-                    .displace(fraction * DVec3::new(x, y, z), fraction * DVec3::new(ax, ay, az));
-                if fraction != 1.0 {
-                    node.step = node.step.map(|v| v * fraction.abs());
-                }
-            }
+    /// The node of body `slot` among joint node `j`'s neighbours, if that body moves.
+    fn body_node(&self, j: usize, slot: u32) -> Option<usize> {
+        let body = NodeKind::Body { slot };
+        let node = &self.nodes[j];
+        let parent = node.parent;
+        if parent != NONE && self.nodes[parent as usize].kind == body {
+            return Some(parent as usize);
         }
+        node.body_children
+            .into_iter()
+            .find(|&c| c != NONE && self.nodes[c as usize].kind == body)
+            .map(|c| c as usize)
     }
 
     /// Fills every node's right-hand side and, with `matrix`, its diagonal and coupling blocks,
-    /// for the bodies' state now; returns the largest position error of any row.
+    /// for the bodies' state now; returns the largest position error of any row (of a limit row:
+    /// how far past its limit). With `choose`, picks the limit rows to take in: for a velocity
+    /// solve those pushing at the end of the last pass or moving below their targets now, for the
+    /// projection those past their limits; without, keeps the rows taken in. A velocity solve's
+    /// right-hand side also applies the impulses that let go of the rows left out
+    /// (`add_let_go_impulses`).
     fn assemble(
         &mut self,
+        tree: Range<usize>,
         joints: &[Slot<Joint>],
         bodies: &[SolverBody],
         target: Target,
         matrix: bool,
-    ) -> f64 {
+        choose: bool,
+    ) -> Assembled {
         let mut largest_error = 0.0_f64;
+        let mut limited = false;
         let mut rows = EqualityRows::default();
-        for i in 0..self.nodes.len() {
+        for i in tree.clone() {
             let node = &mut self.nodes[i];
             node.x = [0.0; MAX_DIM];
             match node.kind {
@@ -647,19 +613,56 @@ impl JointTrees {
                 NodeKind::Joint { slot } => {
                     let joint = joints[slot as usize].value().expect("tree joints are live");
                     let (ia, ib) = (joint.body_a.index(), joint.body_b.index());
-                    let has_rows = joint.equality_rows_into(&bodies[ia], &bodies[ib], &mut rows);
+                    let (a, b) = (&bodies[ia], &bodies[ib]);
+                    node.ends = (ia as u32, ib as u32);
+                    let has_rows = joint.tree_rows_into(a, b, &mut rows, &mut node.limits);
                     debug_assert!(has_rows, "tree joints have equality rows");
-                    debug_assert_eq!(rows.len, node.dim);
+                    debug_assert_eq!(rows.len, node.equality_dim);
                     for k in 0..rows.len {
                         largest_error = largest_error.max(rows.error[k].abs());
                         node.x[k] = match target {
-                            Target::Velocity { bias_rate } => {
-                                let cdot = rows.rows[k].velocity(&bodies[ia], &bodies[ib]);
+                            Target::Velocity { bias_rate, .. } => {
+                                let cdot = rows.rows[k].velocity(a, b);
                                 -(cdot + bias_rate * rows.error[k])
                             }
                             Target::Position => -rows.error[k],
                         };
                     }
+                    limited |= node.limits.len > 0;
+                    if let Target::Velocity { inv_h, .. } = target {
+                        node.limits.choose_approached_sides(1.0 / inv_h, |j| j.velocity(a, b));
+                    }
+                    for k in 0..node.limits.len {
+                        let row = node.limits.rows[k];
+                        if !row.eligible {
+                            node.active[k] = false;
+                            continue;
+                        }
+                        let rhs = match target {
+                            Target::Velocity { bias_rate, inv_h } => {
+                                let cdot = row.jacobian.velocity(a, b);
+                                let goal =
+                                    if row.error > 0.0 { -row.error * inv_h } else { -bias_rate * row.error };
+                                (node.limit_velocity[k], node.limit_target[k]) = (cdot, goal);
+                                if choose {
+                                    node.active[k] = row.impulse > 0.0 || cdot < goal;
+                                }
+                                goal - cdot
+                            }
+                            Target::Position => {
+                                if choose {
+                                    node.active[k] = row.error < 0.0;
+                                }
+                                largest_error = largest_error.max(-row.error);
+                                -row.error.min(0.0)
+                            }
+                        };
+                        if node.active[k] {
+                            node.x[rows.len] = rhs;
+                            rows.push(row.jacobian, row.error);
+                        }
+                    }
+                    node.dim = rows.len;
                     if matrix {
                         node.diagonal.set_zero(node.dim, node.dim);
                         self.couple(i, ia, &rows, -1.0);
@@ -668,10 +671,42 @@ impl JointTrees {
                 }
             }
         }
-        if matrix {
-            self.factored = false;
+        if limited && matches!(target, Target::Velocity { .. }) {
+            self.add_let_go_impulses(tree);
         }
-        largest_error
+        Assembled { largest_error, limited }
+    }
+
+    /// Adds to the bodies' right-hand sides the impulses that take each limit row left out of the
+    /// solve back to zero: the row's accumulated impulse, applied at the warm start, is taken
+    /// back (`−λ_acc`), so that the solve's result includes it (`M Δv = Jᵀλ + f`).
+    fn add_let_go_impulses(&mut self, tree: Range<usize>) {
+        for i in tree {
+            let node = &self.nodes[i];
+            if !matches!(node.kind, NodeKind::Joint { .. }) {
+                continue;
+            }
+            let (ia, ib) = node.ends;
+            for k in 0..node.limits.len {
+                let row = self.nodes[i].limits.rows[k];
+                if self.nodes[i].active[k] || row.impulse == 0.0 {
+                    continue;
+                }
+                let p = -row.impulse;
+                let j = &row.jacobian;
+                for (slot, sign, linear, angular) in
+                    [(ia, -p, j.linear_a, j.angular_a), (ib, p, j.linear_b, j.angular_b)]
+                {
+                    if let Some(n) = self.body_node(i, slot) {
+                        let x = &mut self.nodes[n].x;
+                        for c in 0..3 {
+                            x[c] += sign * linear[c];
+                            x[3 + c] += sign * angular[c];
+                        }
+                    }
+                }
+            }
+        }
     }
 
     /// Writes the coupling between joint node `j` and the node of body `slot` (if it moves): the
@@ -702,7 +737,9 @@ impl JointTrees {
         if let Some(c) = child {
             let c = c as usize;
             let coupling = &mut self.nodes[c].coupling;
-            (coupling.rows, coupling.cols) = (6, rows.len);
+            // Cleared whole: the joint's rows change with its limit rows, and the products
+            // read all six columns (`block.rs`).
+            coupling.set_zero(6, rows.len);
             for k in 0..rows.len {
                 let column = jacobian(k);
                 for (r, value) in column.iter().enumerate() {
@@ -714,9 +751,8 @@ impl JointTrees {
 
     /// Block `LDLᵀ`, leaves first: each node's factor and elimination multiplier, and its
     /// parent's diagonal block updated.
-    fn factor(&mut self) {
-        let n = self.nodes.len();
-        for i in 0..n {
+    fn factor(&mut self, tree: Range<usize>) {
+        for i in tree {
             let parent = self.nodes[i].parent;
             let (done, rest) = self.nodes.split_at_mut(i + 1);
             let node = &mut done[i];
@@ -726,14 +762,12 @@ impl JointTrees {
                 rest[parent as usize - i - 1].diagonal.sub_transpose_mul(&node.coupling, &node.multiplier);
             }
         }
-        self.factored = true;
     }
 
     /// Solves for the right-hand sides in the nodes' `x` with the factors: forward substitution
     /// (leaves first), the diagonal blocks, back substitution (roots first).
-    fn solve_factored(&mut self) {
-        let n = self.nodes.len();
-        for i in 0..n {
+    fn solve_factored(&mut self, tree: Range<usize>) {
+        for i in tree.clone() {
             let parent = self.nodes[i].parent;
             if parent != NONE {
                 let (done, rest) = self.nodes.split_at_mut(i + 1);
@@ -741,12 +775,12 @@ impl JointTrees {
                 node.multiplier.sub_transpose_mul_vector(&node.x, &mut rest[parent as usize - i - 1].x);
             }
         }
-        for node in self.nodes.iter_mut() {
+        for node in &mut self.nodes[tree.clone()] {
             let mut x = node.x;
             node.factor.solve_in_place(&mut x);
             node.x = x;
         }
-        for i in (0..n).rev() {
+        for i in tree.rev() {
             let parent = self.nodes[i].parent;
             if parent != NONE {
                 let (done, rest) = self.nodes.split_at_mut(i + 1);
@@ -756,11 +790,6 @@ impl JointTrees {
             }
         }
     }
-}
-
-/// `u vᵀ`.
-fn outer(u: DVec3, v: DVec3) -> DMat3 {
-    DMat3::from_cols(u * v.x, u * v.y, u * v.z)
 }
 
 #[cfg(test)]

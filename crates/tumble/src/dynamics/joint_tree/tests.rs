@@ -21,7 +21,7 @@ fn prepared(world: &mut World) -> (StepContext, Vec<SolverBody>, JointTrees) {
         j.prepare(a, b, &ctx);
     }
     let mut trees = JointTrees::default();
-    trees.build(&mut world.joints, &bodies);
+    trees.build(&mut world.joints, &bodies, true);
     (ctx, bodies, trees)
 }
 
@@ -60,11 +60,11 @@ fn trees_are_rebuilt_only_when_their_joints_or_moving_bodies_change() {
     assert_eq!(trees.nodes.len(), 5);
     let marker = 1234.5;
     trees.nodes[0].x[0] = marker;
-    trees.build(&mut world.joints, &bodies);
+    trees.build(&mut world.joints, &bodies, true);
     assert_eq!(trees.nodes[0].x[0], marker, "the same joints and bodies keep the nodes");
 
     bodies[ids[1].index()] = SolverBody::FIXED;
-    trees.build(&mut world.joints, &bodies);
+    trees.build(&mut world.joints, &bodies, true);
     // Two figures, each a joint hung from the (now fixed) middle body and its outer body.
     assert_eq!(trees.nodes.len(), 4);
     assert!(trees.nodes.iter().all(|node| node.x[0] != marker));
@@ -82,14 +82,14 @@ fn kept_trees_do_not_carry_a_non_finite_solve_over() {
     let clean = bodies.clone();
     bodies[ids[2].index()].w = DVec3::new(f64::INFINITY, 0.0, f64::NAN);
     bodies[ids[2].index()].q = DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0);
-    trees.solve(world.joints.slots_mut(), &mut bodies, 10.0);
+    trees.solve(world.joints.slots_mut(), &mut bodies, 10.0, 60.0);
     assert!(bodies.iter().any(|b| !b.v.is_finite()), "the failure reached the figure");
 
     let mut bodies = clean;
     bodies[ids[0].index()].w = DVec3::new(0.5, -1.0, 2.0);
-    trees.build(&mut world.joints, &bodies);
+    trees.build(&mut world.joints, &bodies, true);
     assert_eq!(trees.nodes.len(), 5, "the same trees are kept");
-    trees.solve(world.joints.slots_mut(), &mut bodies, 10.0);
+    trees.solve(world.joints.slots_mut(), &mut bodies, 10.0, 60.0);
     assert!(bodies.iter().all(|b| b.v.is_finite() && b.w.is_finite()));
     for (_, j) in world.joints.iter() {
         let rows = j.equality_rows(&bodies[j.body_a.index()], &bodies[j.body_b.index()]).unwrap();
@@ -259,7 +259,7 @@ fn one_solve_satisfies_every_tree_row_exactly() {
     assert!(world.joints.iter().all(|(_, j)| j.in_tree));
 
     let beta = 40.0;
-    trees.solve(world.joints.slots_mut(), &mut bodies, beta);
+    trees.solve(world.joints.slots_mut(), &mut bodies, beta, 60.0);
     for (_, j) in world.joints.iter().filter(|(_, j)| j.in_tree) {
         let (a, b) = (&bodies[j.body_a.index()], &bodies[j.body_b.index()]);
         let rows = j.equality_rows(a, b).unwrap();
@@ -270,8 +270,8 @@ fn one_solve_satisfies_every_tree_row_exactly() {
     }
 }
 
-/// Two figures of two welded boxes each; the first also hangs from the ground on a hinge with
-/// limits, which the row-by-row solve keeps. Only the second is a tree: the first figure's weld
+/// Three figures of two welded boxes each; the first also hangs from the ground on a hinge with
+/// a motor, which the row-by-row solve keeps. Only the second is a tree: the first figure's weld
 /// goes row by row with the hinge (`leave_out_held_figures`), and so does a figure a distance
 /// joint reaches.
 #[test]
@@ -298,8 +298,9 @@ fn figures_other_joints_act_on_are_not_trees() {
     weld(&mut world, 0);
     weld(&mut world, 2);
     weld(&mut world, 4);
-    let limited = HingeJoint { limits: Some(crate::Limits::new(-0.5, 0.5)), ..Default::default() };
-    let hinge = JointDef::new(ground, boxes[0], DVec3::new(-0.15, 0.0, 1.0), JointKind::Hinge(limited));
+    let motor = crate::Motor { target_speed: 1.0, max_force: 10.0 };
+    let driven = HingeJoint { motor: Some(motor), ..Default::default() };
+    let hinge = JointDef::new(ground, boxes[0], DVec3::new(-0.15, 0.0, 1.0), JointKind::Hinge(driven));
     world.add_joint(hinge.with_axis(DVec3::Y)).unwrap();
     let rope = JointKind::Distance(crate::DistanceJoint::default());
     world.add_joint(JointDef::new(ground, boxes[5], DVec3::new(1.5, 0.0, 2.0), rope)).unwrap();
@@ -308,4 +309,66 @@ fn figures_other_joints_act_on_are_not_trees() {
     let in_tree: Vec<bool> = world.joints.iter().map(|(_, j)| j.in_tree).collect();
     assert_eq!(in_tree, [false, true, false, false, false]);
     assert_eq!(trees.nodes.len(), 3, "one figure: two bodies and their weld");
+}
+
+/// Limit rows in the tree (an active set): after one solve every eligible limit row moves at
+/// least at its target velocity, pushes (impulse ≥ 0), and pushes only where it moves exactly at
+/// its target; a row that is not eligible (the farther side of a range) is let go of, its
+/// impulse back at zero. The boxes spin hard about the joints' axis, the first two apart
+/// towards the hinge's upper limit, the last two towards the ball joint's lower twist limit, each
+/// fast enough to reach it within the substep (1/480 s).
+#[test]
+fn limit_rows_in_the_tree_push_only_and_hold_their_targets() {
+    let hinge = HingeJoint { limits: Some(crate::Limits::new(-0.5, 0.2)), ..Default::default() };
+    let ball = BallJoint {
+        swing_limit: Some(0.3),
+        twist_limits: Some(crate::Limits::new(-0.1, 0.4)),
+        ..Default::default()
+    };
+    let (mut world, ids) =
+        three_boxes(DVec3::new(0.2, 0.1, 0.1), 0.0, [JointKind::Hinge(hinge), JointKind::Ball(ball)]);
+    let (ctx, mut bodies, mut trees) = prepared(&mut world);
+    assert!(world.joints.iter().all(|(_, j)| j.in_tree), "limited joints are tree joints");
+    // The joint axis is Z (`JointDef`'s default): spin the boxes about it, apart.
+    bodies[ids[0].index()].w = DVec3::new(0.0, 0.0, -200.0);
+    bodies[ids[1].index()].w = DVec3::new(0.0, 0.0, 100.0);
+    bodies[ids[2].index()].w = DVec3::new(5.0, 0.0, -100.0);
+    // A warm-started impulse on the hinge's lower side, which is not eligible (0.5 rad away,
+    // heading off): the solve must let go of it.
+    let hinge_slot = world.joints.iter().next().unwrap().0;
+    world.joints.get_mut(hinge_slot).unwrap().add_limit_impulse(0, 2.0);
+    for (_, j) in world.joints.iter_mut() {
+        let (ia, ib) = (j.body_a.index(), j.body_b.index());
+        let (mut a, mut b) = (bodies[ia], bodies[ib]);
+        j.warm_start(&mut a, &mut b);
+        (bodies[ia], bodies[ib]) = (a, b);
+    }
+    let bias_rate = 10.0;
+    trees.solve(world.joints.slots_mut(), &mut bodies, bias_rate, ctx.inv_h);
+
+    let mut pushing = 0;
+    for (_, j) in world.joints.iter() {
+        let (a, b) = (&bodies[j.body_a.index()], &bodies[j.body_b.index()]);
+        let (mut rows, mut limits) = (EqualityRows::default(), LimitRows::default());
+        assert!(j.tree_rows_into(a, b, &mut rows, &mut limits));
+        for k in 0..rows.len {
+            let residual = rows.rows[k].velocity(a, b) + bias_rate * rows.error[k];
+            assert!(residual.abs() < 1e-9, "equality row {k}: {residual:e}");
+        }
+        for row in &limits.rows[..limits.len] {
+            if !row.eligible {
+                assert_eq!(row.impulse, 0.0, "a row not eligible keeps no impulse");
+                continue;
+            }
+            let target = if row.error > 0.0 { -row.error * ctx.inv_h } else { -bias_rate * row.error };
+            let velocity = row.jacobian.velocity(a, b);
+            assert!(row.impulse >= 0.0, "a limit only pushes: {}", row.impulse);
+            assert!(velocity >= target - 1e-9, "velocity {velocity} below its target {target}");
+            if row.impulse > 0.0 {
+                pushing += 1;
+                assert!((velocity - target).abs() < 1e-9, "a pushing row moves at its target");
+            }
+        }
+    }
+    assert!(pushing >= 2, "both joints' limits are reached ({pushing} rows push)");
 }
