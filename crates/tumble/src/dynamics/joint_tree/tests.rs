@@ -372,3 +372,43 @@ fn limit_rows_in_the_tree_push_only_and_hold_their_targets() {
     }
     assert!(pushing >= 2, "both joints' limits are reached ({pushing} rows push)");
 }
+
+/// A limit row that pushed at the end of the last pass starts the next one in the active set;
+/// when its joint is now moving away from the limit the solve would have it pull, so it leaves
+/// the set and its impulse goes back to zero, taken off the bodies' velocities.
+#[test]
+fn a_limit_row_that_would_pull_is_let_go() {
+    let hinge = HingeJoint { limits: Some(crate::Limits::new(-0.5, 0.2)), ..Default::default() };
+    let kinds = [JointKind::Hinge(hinge), JointKind::Ball(BallJoint::new())];
+    let (mut world, ids) = three_boxes(DVec3::new(0.2, 0.1, 0.1), 0.0, kinds);
+    let (ctx, mut bodies, mut trees) = prepared(&mut world);
+    // Turning slowly away from the upper limit (the nearer side), which pushed last pass.
+    bodies[ids[0].index()].w = DVec3::new(0.0, 0.0, 2.0);
+    bodies[ids[1].index()].w = DVec3::new(0.0, 0.0, -2.0);
+    // The same figure without the impulse, solved alike, for comparison.
+    let (mut clean_world, mut clean_bodies, mut clean_trees) = (world.clone(), bodies.clone(), trees.clone());
+    clean_trees.solve(clean_world.joints.slots_mut(), &mut clean_bodies, 10.0, ctx.inv_h);
+    let hinge_slot = world.joints.iter().next().unwrap().0;
+    world.joints.get_mut(hinge_slot).unwrap().add_limit_impulse(1, 3.0);
+    for (_, j) in world.joints.iter_mut() {
+        let (ia, ib) = (j.body_a.index(), j.body_b.index());
+        let (mut a, mut b) = (bodies[ia], bodies[ib]);
+        j.warm_start(&mut a, &mut b);
+        (bodies[ia], bodies[ib]) = (a, b);
+    }
+    trees.solve(world.joints.slots_mut(), &mut bodies, 10.0, ctx.inv_h);
+
+    let joint = world.joints.get(hinge_slot).unwrap();
+    let (a, b) = (&bodies[joint.body_a.index()], &bodies[joint.body_b.index()]);
+    let (mut rows, mut limits) = (EqualityRows::default(), LimitRows::default());
+    assert!(joint.tree_rows_into(a, b, &mut rows, &mut limits));
+    let upper = &limits.rows[1];
+    assert!(upper.eligible, "the upper side is the nearer");
+    assert_eq!(upper.impulse, 0.0, "let go of, not pulling");
+    assert!(upper.jacobian.velocity(a, b) > 0.0, "moving away");
+    // The let-go impulse took back exactly what the warm start gave: every body moves as in the
+    // figure that never had the impulse.
+    for (body, clean) in bodies.iter().zip(&clean_bodies) {
+        assert!((body.v - clean.v).length() < 1e-9 && (body.w - clean.w).length() < 1e-9);
+    }
+}
