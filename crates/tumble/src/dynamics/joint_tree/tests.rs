@@ -25,6 +25,17 @@ fn prepared(world: &mut World) -> (StepContext, Vec<SolverBody>, JointTrees) {
     (ctx, bodies, trees)
 }
 
+/// Every joint's warm start: its accumulated impulses applied to the bodies, as each substep
+/// begins.
+fn warm_start(world: &mut World, bodies: &mut [SolverBody]) {
+    for (_, j) in world.joints.iter_mut() {
+        let (ia, ib) = (j.body_a.index(), j.body_b.index());
+        let (mut a, mut b) = (bodies[ia], bodies[ib]);
+        j.warm_start(&mut a, &mut b);
+        (bodies[ia], bodies[ib]) = (a, b);
+    }
+}
+
 /// Three boxes of half extents `half` in a row along X, 0.5 m apart, the k-th turned by `k·turn`
 /// about Z, joined in turn by joints of `kinds` at the midpoints.
 fn three_boxes(half: DVec3, turn: f64, kinds: [JointKind; 2]) -> (World, Vec<crate::BodyId>) {
@@ -337,12 +348,7 @@ fn limit_rows_in_the_tree_push_only_and_hold_their_targets() {
     // heading off): the solve must let go of it.
     let hinge_slot = world.joints.iter().next().unwrap().0;
     world.joints.get_mut(hinge_slot).unwrap().add_limit_impulse(0, 2.0);
-    for (_, j) in world.joints.iter_mut() {
-        let (ia, ib) = (j.body_a.index(), j.body_b.index());
-        let (mut a, mut b) = (bodies[ia], bodies[ib]);
-        j.warm_start(&mut a, &mut b);
-        (bodies[ia], bodies[ib]) = (a, b);
-    }
+    warm_start(&mut world, &mut bodies);
     let bias_rate = 10.0;
     trees.solve(world.joints.slots_mut(), &mut bodies, bias_rate, ctx.inv_h);
 
@@ -390,12 +396,7 @@ fn a_limit_row_that_would_pull_is_let_go() {
     clean_trees.solve(clean_world.joints.slots_mut(), &mut clean_bodies, 10.0, ctx.inv_h);
     let hinge_slot = world.joints.iter().next().unwrap().0;
     world.joints.get_mut(hinge_slot).unwrap().add_limit_impulse(1, 3.0);
-    for (_, j) in world.joints.iter_mut() {
-        let (ia, ib) = (j.body_a.index(), j.body_b.index());
-        let (mut a, mut b) = (bodies[ia], bodies[ib]);
-        j.warm_start(&mut a, &mut b);
-        (bodies[ia], bodies[ib]) = (a, b);
-    }
+    warm_start(&mut world, &mut bodies);
     trees.solve(world.joints.slots_mut(), &mut bodies, 10.0, ctx.inv_h);
 
     let joint = world.joints.get(hinge_slot).unwrap();
