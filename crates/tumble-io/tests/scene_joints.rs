@@ -106,13 +106,14 @@ fn bullet_key_reaches_the_body() {
 #[test]
 fn world_solver_keys_reach_the_world() {
     let text = format!(
-        "[world]\nsubsteps = 8\nsolve_iterations = 2\nrelax_iterations = 0\ncontact_hertz = 20.0\njoint_hertz = 40.0\nsleep = false\n{TWO_BODIES}"
+        "[world]\nsubsteps = 8\nsolve_iterations = 2\nrelax_iterations = 0\ncontact_hertz = 20.0\njoint_hertz = 40.0\njoint_tree_limits = false\nsleep = false\n{TWO_BODIES}"
     );
     let scene = Scene::from_str(&text, FILE).unwrap();
     let built = scene.build_world().unwrap();
     let s = built.world.solver_settings();
     assert_eq!((s.substeps, s.solve_iterations, s.relax_iterations), (8, 2, 0));
     assert_eq!((s.contact_hertz, s.joint_hertz), (20.0, 40.0));
+    assert!(s.joint_trees && !s.joint_tree_limits);
     assert!(!scene.sleep.enabled);
     expect_error("[world]\nsubsteps = 0\n", 2, &["world: substeps must be between 1 and 1000, got 0"]);
     expect_error("[world]\n\nrelax_iterations = -1\n", 3, &["world: relax_iterations"]);
