@@ -632,12 +632,10 @@ impl JointTrees {
                     if let Target::Velocity { inv_h, .. } = target {
                         node.limits.choose_approached_sides(1.0 / inv_h, |j| j.velocity(a, b));
                     }
+                    // Without `choose` the rows taken in stay as they are, eligible now or not: the
+                    // projection's chord step needs exactly the rows its factors were made with.
                     for k in 0..node.limits.len {
                         let row = node.limits.rows[k];
-                        if !row.eligible {
-                            node.active[k] = false;
-                            continue;
-                        }
                         let rhs = match target {
                             Target::Velocity { bias_rate, inv_h } => {
                                 let cdot = row.jacobian.velocity(a, b);
@@ -645,15 +643,17 @@ impl JointTrees {
                                     if row.error > 0.0 { -row.error * inv_h } else { -bias_rate * row.error };
                                 (node.limit_velocity[k], node.limit_target[k]) = (cdot, goal);
                                 if choose {
-                                    node.active[k] = row.impulse > 0.0 || cdot < goal;
+                                    node.active[k] = row.eligible && (row.impulse > 0.0 || cdot < goal);
                                 }
                                 goal - cdot
                             }
                             Target::Position => {
-                                if choose {
-                                    node.active[k] = row.error < 0.0;
+                                if row.eligible {
+                                    largest_error = largest_error.max(-row.error);
                                 }
-                                largest_error = largest_error.max(-row.error);
+                                if choose {
+                                    node.active[k] = row.eligible && row.error < 0.0;
+                                }
                                 -row.error.min(0.0)
                             }
                         };
